@@ -1,0 +1,14 @@
+// Process exit codes of the prism command line, one per class of failure.
+#pragma once
+
+namespace prism {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitInternal = 1,  // a bug or an unexpected failure inside prism
+  kExitUsage = 2,     // bad command-line arguments or settings
+  kExitInput = 3,     // a scene, job file or image that cannot be used
+  kExitOutput = 4,    // an output that cannot be written
+};
+
+}  // namespace prism

@@ -1,0 +1,48 @@
+// prism command line: parses arguments and dispatches to the commands.
+#include <CLI/CLI.hpp>
+
+#include "apps/exit_codes.h"
+#include "apps/render_command.h"
+
+int main(int argc, char** argv) {
+  using namespace prism;
+  CLI::App app{"prism " PRISM_VERSION ": a production-style CPU path tracer. glTF 2.0 scenes in, OpenEXR images out."};
+  app.set_version_flag("--version", "prism " PRISM_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success, 1 internal error, 2 usage error, 3 bad input (scene, job file, image),\n"
+      "4 output not writable.\n"
+      "Run 'prism COMMAND --help' for the options of a command.");
+
+  RenderOptions render;
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene to an OpenEXR image (float R,G,B,A).");
+  cmd->add_option("SCENE", render.scene,
+                  "Scene to render: a glTF 2.0 file (.gltf or .glb), or a job file (.json) naming one with settings")
+      ->required();
+  cmd->add_option("-o,--output", render.output,
+                  "Output EXR path (default: the job's \"output\", else SCENE's name with .exr in the current folder)");
+  cmd->add_option("--spp", render.spp, "Samples per pixel (default 64, or the job's \"spp\")")->check(CLI::PositiveNumber);
+  cmd->add_option("--res", render.resolution,
+                  "Image size WIDTHxHEIGHT, e.g. 1280x720 (default: 512 high, width from the camera's aspect ratio)");
+  cmd->add_option("--camera", render.camera,
+                  "Camera by name (the camera's or its node's) or by index in node order (default: the first; with no "
+                  "cameras, one that frames the scene)");
+  cmd->add_option("--max-depth", render.max_depth,
+                  "Maximum bounces; 0 renders only emitters seen directly (default 8)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", render.seed, "Random seed; the same seed gives the same image bits (default 0)");
+  cmd->add_option("--threads", render.threads, "Worker threads; 0 = all cores (default 0). The image does not depend on it")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--integrator", render.integrator, "Integrator: path (default)");
+  cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
+  cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+  if (cmd->parsed()) return run_render(render);
+  return kExitUsage;
+}

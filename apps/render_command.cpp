@@ -1,0 +1,174 @@
+#include "apps/render_command.h"
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "apps/exit_codes.h"
+#include "apps/progress_bar.h"
+#include "core/camera.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "integrators/integrator_factory.h"
+#include "io/atomic_file.h"
+#include "io/errors.h"
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
+#include "io/scene_source.h"
+
+namespace prism {
+namespace {
+
+class UsageError : public std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void parse_resolution(const std::string& text, int& width, int& height) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
+      w > 65536 || h > 65536)
+    throw UsageError("--res: expected WIDTHxHEIGHT with each between 1 and 65536, got '" + text + "'");
+  width = w;
+  height = h;
+}
+
+// Defaults, then the job file, then the command line.
+RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobFile>& job) {
+  RenderSettings s;
+  if (job) {
+    if (job->width) s.width = *job->width;
+    if (job->height) s.height = *job->height;
+    if (job->spp) s.spp = *job->spp;
+    if (job->max_depth) s.max_depth = *job->max_depth;
+    if (job->seed) s.seed = *job->seed;
+    if (job->camera) s.camera = *job->camera;
+    if (job->integrator) s.integrator = *job->integrator;
+  }
+  if (o.resolution) parse_resolution(*o.resolution, s.width, s.height);
+  if (o.spp) s.spp = *o.spp;
+  if (o.max_depth) s.max_depth = *o.max_depth;
+  if (o.seed) s.seed = *o.seed;
+  if (o.camera) s.camera = *o.camera;
+  if (o.integrator) s.integrator = *o.integrator;
+  if (o.threads) s.threads = *o.threads;
+  if (s.spp < 1) throw UsageError("--spp must be at least 1");
+  if (s.max_depth < 0) throw UsageError("--max-depth must be at least 0");
+  if (s.threads < 0) throw UsageError("--threads must be at least 0 (0 = all cores)");
+  return s;
+}
+
+std::string default_output(const std::string& scene) {
+  return std::filesystem::path(scene).stem().string() + ".exr";
+}
+
+std::string si(double v) {
+  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
+  if (v >= 1e6) return fmt::format("{:.1f}M", v / 1e6);
+  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
+  return fmt::format("{:.0f}", v);
+}
+
+int render(const RenderOptions& o) {
+  Diagnostics diag;
+  LoadedScene loaded = load_scene_source(o.scene, diag);
+  if (!o.quiet)
+    for (const auto& w : diag.lines()) fmt::print(stderr, "prism: warning: {}\n", w);
+
+  RenderSettings settings = resolve_settings(o, loaded.job);
+  const std::string output = o.output ? *o.output : (loaded.job && loaded.job->output ? *loaded.job->output : default_output(o.scene));
+  std::optional<std::string> preview = o.preview;
+  if (!preview && loaded.job && loaded.job->preview) preview = loaded.job->preview;
+  check_output_path(output);
+  if (preview) check_output_path(*preview);
+
+  CameraDesc camera_desc;
+  try {
+    camera_desc = select_camera(loaded.scene, settings.camera);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.scene, "camera", e.what());
+  }
+  if (settings.width == 0 || settings.height == 0) default_resolution(camera_desc, settings.width, settings.height);
+  std::unique_ptr<Integrator> integrator;
+  try {
+    integrator = make_integrator(settings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+
+  std::unique_ptr<Scene> scene;
+  try {
+    scene = std::make_unique<Scene>(std::move(loaded.scene));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.scene, "", e.what());
+  }
+  const Camera camera(camera_desc, settings.width, settings.height);
+  Film film(settings.width, settings.height);
+  RenderProgress progress;
+  progress.samples_total = uint64_t(settings.width) * settings.height * settings.spp;
+  RenderStats stats;
+  {
+    std::optional<ProgressBar> bar;
+    if (!o.quiet) bar.emplace(progress.samples_done, progress.samples_total, "rendering");
+    stats = prism::render(*scene, camera, *integrator, settings, film, &progress);
+  }
+
+  const std::vector<float> rgba = film.resolve_rgba();
+  const std::vector<ExrAttribute> attributes = {
+      {"prism/version", std::string(PRISM_VERSION)},
+      {"prism/scene", o.scene},
+      {"prism/camera", camera_desc.name},
+      {"prism/integrator", settings.integrator},
+      {"prism/spp", settings.spp},
+      {"prism/maxDepth", settings.max_depth},
+      {"prism/rrStartDepth", settings.rr_start_depth},
+      {"prism/seed", std::to_string(settings.seed)},
+      {"prism/sampler", std::string("independent")},
+      {"prism/nonFiniteSamples", double(stats.nonfinite_samples)},
+  };
+  const int replaced = write_exr(output, settings.width, settings.height, rgba, attributes);
+  if (preview) write_png_preview(*preview, settings.width, settings.height, rgba);
+
+  if (!o.quiet) {
+    if (replaced > 0) fmt::print(stderr, "prism: warning: {} pixel values overflowed float and were clamped\n", replaced);
+    const double secs = stats.seconds > 0 ? stats.seconds : 1e-9;
+    fmt::print("{}x{}, {} spp, {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s (camera {}, extension {}, shadow {}), "
+               "BVH {:.3f} s, {} non-finite samples -> {}{}\n",
+               settings.width, settings.height, settings.spp, stats.seconds, double(stats.samples) / secs / 1e6,
+               double(stats.rays.total()) / secs / 1e6, si(double(stats.rays.camera)), si(double(stats.rays.extension)),
+               si(double(stats.rays.shadow)), scene->build_seconds(), stats.nonfinite_samples, output,
+               preview ? " + " + *preview : "");
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& options) {
+  try {
+    return render(options);
+  } catch (const UsageError& e) {
+    fmt::print(stderr, "prism: error: {}\n", e.what());
+    return kExitUsage;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "prism: error: {}\n", e.what());
+    return kExitInput;
+  } catch (const OutputError& e) {
+    fmt::print(stderr, "prism: error: {}\n", e.what());
+    return kExitOutput;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "prism: error: out of memory\n");
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "prism: internal error: {}\n", e.what());
+    return kExitInternal;
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,39 @@
+// Camera: turns a film position into a primary ray (glTF perspective and orthographic models).
+#pragma once
+
+#include <string>
+
+#include "core/ray.h"
+#include "core/scene_desc.h"
+
+namespace prism {
+
+class Camera {
+ public:
+  Camera(const CameraDesc& desc, int width, int height);
+
+  // Ray through film position (fx, fy) in pixels: x to the right, y down, (0,0) the top-left corner.
+  Ray generate_ray(float fx, float fy) const;
+
+  const CameraDesc& desc() const { return desc_; }
+
+ private:
+  CameraDesc desc_;
+  int width_, height_;
+  Vec3 position_, right_, up_, forward_;  // orthonormal, scale removed from the node transform
+  float half_w_, half_h_;                 // tan(fov/2)-scaled (perspective) or magnifications (ortho)
+};
+
+// Picks a camera by name or index ("" = the first camera in node order). With no cameras in
+// the scene, returns a perspective camera that frames its bounds. Throws std::invalid_argument
+// naming the choices when `which` matches nothing.
+CameraDesc select_camera(const SceneDesc& scene, const std::string& which);
+
+// A perspective camera looking along -Z at the bounds, far enough to see all of them.
+CameraDesc framing_camera(const Bounds3& bounds);
+
+// The image size a camera suggests when the user gives none: 512 pixels high, the width from
+// the camera's aspect ratio (square when it has none).
+void default_resolution(const CameraDesc& camera, int& width, int& height);
+
+}  // namespace prism

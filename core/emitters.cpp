@@ -1,0 +1,197 @@
+#include "core/emitters.h"
+
+#include <cmath>
+
+#include "core/constants.h"
+#include "core/frame.h"
+#include "core/sampling.h"
+#include "core/spawn.h"
+#include "core/sphere_geometry.h"
+
+namespace prism {
+namespace {
+
+// A reference point this close to a sphere's surface (in squared-radius units) samples it by
+// area, as from inside: the cone of directions degenerates to a hemisphere there.
+constexpr float kInsideSphere = 1.00001f;
+
+// Converts an area density at p (unit normal n) to a solid-angle density seen from ref:
+// pdf_area * dist^2 / |cos theta_p| (Veach's thesis, eq. 8.10).
+float area_to_solid_angle(float pdf_area, const Vec3& ref, const Vec3& p, const Vec3& n) {
+  const Vec3 d = p - ref;
+  const float dist2 = length_squared(d);
+  const float cos_p = std::abs(dot(n, d)) / std::sqrt(dist2);
+  return cos_p > 0 ? pdf_area * dist2 / cos_p : 0.0f;
+}
+
+}  // namespace
+
+Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m) {
+  Rgb e = m.emissive * m.emissive_strength;
+  const TextureRef& ref = m.emissive_texture;
+  if (!ref.present() || ref.texture >= static_cast<int>(desc.textures.size())) return e;
+  const int image = desc.textures[ref.texture].image;
+  if (image < 0 || image >= static_cast<int>(desc.images.size())) return e;
+  const ImageDesc& img = desc.images[image];
+  if (img.channels <= 0 || img.texels.empty()) return e;
+  double sum[3] = {0, 0, 0};
+  const size_t n = img.texels.size() / img.channels;
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) sum[c] += img.texels[i * img.channels + std::min(c, img.channels - 1)];
+  return e * Rgb(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
+}
+
+Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
+  std::vector<double> power;
+  instance_prim_base_.resize(desc.instances.size(), 0);
+  for (size_t i = 0; i < desc.instances.size(); ++i) {
+    const InstanceDesc& inst = desc.instances[i];
+    const MeshDesc& mesh = desc.meshes[inst.mesh];
+    instance_prim_base_[i] = static_cast<int>(prim_emitter_base_.size());
+    const float flip = inst.object_to_world.flips_handedness() ? -1.0f : 1.0f;
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const PrimitiveDesc& prim = mesh.primitives[p];
+      const MaterialDesc& mat = desc.material(prim.material);
+      if (!mat.is_emissive() || prim.triangle_count() == 0) {
+        prim_emitter_base_.push_back(-1);
+        continue;
+      }
+      prim_emitter_base_.push_back(static_cast<int>(emitters_.size()));
+      const float radiance = luminance(mean_emission(desc, mat)) * (mat.double_sided ? 2.0f : 1.0f);
+      for (size_t t = 0; t < prim.triangle_count(); ++t) {
+        Emitter e;
+        e.instance = static_cast<int>(i);
+        e.primitive = static_cast<int>(p);
+        e.index = static_cast<uint32_t>(t);
+        e.p0 = inst.object_to_world.point(prim.positions[prim.indices[3 * t]]);
+        e.p1 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]);
+        e.p2 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]]);
+        if (flip < 0) std::swap(e.p1, e.p2);  // keep the front face counter-clockwise in world space
+        e.area = 0.5f * length(cross(e.p1 - e.p0, e.p2 - e.p0));
+        emitters_.push_back(e);
+        power.push_back(double(radiance) * e.area * kPi);
+      }
+    }
+  }
+  sphere_emitter_.assign(desc.spheres.size(), -1);
+  for (size_t s = 0; s < desc.spheres.size(); ++s) {
+    const MaterialDesc& mat = desc.material(desc.spheres[s].material);
+    if (!mat.is_emissive()) continue;
+    sphere_emitter_[s] = static_cast<int>(emitters_.size());
+    Emitter e;
+    e.sphere = true;
+    e.index = static_cast<uint32_t>(s);
+    const float r = desc.spheres[s].radius;
+    e.area = 4.0f * kPi * r * r;
+    emitters_.push_back(e);
+    power.push_back(double(luminance(mean_emission(desc, mat))) * (mat.double_sided ? 2.0 : 1.0) * e.area * kPi);
+  }
+  pick_ = Distribution1D(power);
+  if (pick_.size() == 0) emitters_.clear();  // nothing with positive power: no lights to sample
+}
+
+int Emitters::triangle_base(int instance, int primitive) const {
+  if (emitters_.empty()) return -1;
+  return prim_emitter_base_[instance_prim_base_[instance] + primitive];
+}
+
+EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
+  if (emitters_.empty()) return {};
+  const size_t i = pick_.sample(u_pick);
+  const Emitter& e = emitters_[i];
+  EmitterSample s = e.sphere ? sample_sphere(e, ref, u) : sample_triangle(e, u);
+  s.emitter = static_cast<int>(i);
+  if (s.pdf <= 0) return s;
+  if (!e.sphere) s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
+  s.pdf *= pick_.pmf(i);
+  return s;
+}
+
+float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const {
+  if (index < 0 || index >= static_cast<int>(emitters_.size())) return 0;
+  const Emitter& e = emitters_[index];
+  float pdf;
+  if (e.sphere) {
+    pdf = sphere_pdf(e, ref, p, n);
+  } else {
+    pdf = area_to_solid_angle(1.0f / e.area, ref, p, n);
+  }
+  return pdf * pick_.pmf(index);
+}
+
+EmitterSample Emitters::sample_triangle(const Emitter& e, Vec2 u) const {
+  const Vec2 b = sample_uniform_triangle(u);
+  const float b0 = b.x, b1 = b.y, b2 = 1.0f - b.x - b.y;
+  EmitterSample s;
+  s.p = e.p0 * b0 + e.p1 * b1 + e.p2 * b2;
+  s.p_error = (abs(e.p0 * b0) + abs(e.p1 * b1) + abs(e.p2 * b2)) * kHitRelativeError;
+  const Vec3 n = cross(e.p1 - e.p0, e.p2 - e.p0);
+  const float len = length(n);
+  if (!(len > 0)) return s;
+  s.n = n / len;
+  const InstanceDesc& inst = desc_->instances[e.instance];
+  const PrimitiveDesc& prim = desc_->meshes[inst.mesh].primitives[e.primitive];
+  s.material = prim.material;
+  if (!prim.uvs.empty()) {
+    // Barycentrics refer to the file's vertex order; undo the swap made for mirrored instances.
+    const bool flipped = inst.object_to_world.flips_handedness();
+    const Vec2& t0 = prim.uvs[prim.indices[3 * e.index]];
+    const Vec2& t1 = prim.uvs[prim.indices[3 * e.index + (flipped ? 2 : 1)]];
+    const Vec2& t2 = prim.uvs[prim.indices[3 * e.index + (flipped ? 1 : 2)]];
+    s.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+  }
+  s.pdf = 1.0f;  // converted to solid angle by the caller
+  return s;
+}
+
+EmitterSample Emitters::sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const {
+  const SphereDesc& sph = desc_->spheres[e.index];
+  EmitterSample s;
+  s.material = sph.material;
+  const Vec3 to_center = sph.center - ref;
+  const float dc2 = length_squared(to_center);
+  const float r2 = sph.radius * sph.radius;
+  Vec3 n;
+  if (dc2 <= r2 * kInsideSphere) {
+    // Inside (or on) the sphere: uniform area sampling, converted to solid angle below.
+    n = sample_uniform_sphere(u);
+    s.p = sph.center + n * sph.radius;
+    s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, n);
+  } else {
+    // Outside: sample the cone of directions the sphere subtends, uniformly in solid angle,
+    // then find the point through the angle alpha at the centre (pbrt-v4 §6.2.4).
+    const float dc = std::sqrt(dc2);
+    const float sin2_max = r2 / dc2;
+    const float cos_max = std::sqrt(std::max(0.0f, 1.0f - sin2_max));
+    const float omc_max = sin2_max / (1.0f + cos_max);  // 1 - cos_max without cancellation
+    const float omc = u.x * omc_max;
+    const float cos_theta = 1.0f - omc;
+    const float sin2_theta = omc * (2.0f - omc);
+    const float sin_max = std::sqrt(sin2_max);
+    const float cos_alpha = sin2_theta / sin_max + cos_theta * std::sqrt(std::max(0.0f, 1.0f - sin2_theta / sin2_max));
+    const float sin_alpha = std::sqrt(std::max(0.0f, 1.0f - cos_alpha * cos_alpha));
+    const float phi = kTwoPi * u.y;
+    const Frame frame = Frame::from_normal(to_center / dc);
+    // The point's normal leans back toward ref: -z in the frame whose +z points to the centre.
+    n = frame.to_world(Vec3(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), -cos_alpha));
+    n = normalize(n);
+    s.p = sph.center + n * sph.radius;
+    s.pdf = 1.0f / (kTwoPi * omc_max);
+  }
+  s.n = n;
+  s.p_error = (abs(sph.center) + Vec3(sph.radius)) * kHitRelativeError;
+  s.uv = sphere_uv(n);
+  return s;
+}
+
+float Emitters::sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {
+  const SphereDesc& sph = desc_->spheres[e.index];
+  const float dc2 = length_squared(sph.center - ref);
+  const float r2 = sph.radius * sph.radius;
+  if (dc2 <= r2 * kInsideSphere) return area_to_solid_angle(1.0f / e.area, ref, p, n);
+  const float sin2_max = r2 / dc2;
+  const float cos_max = std::sqrt(std::max(0.0f, 1.0f - sin2_max));
+  return 1.0f / (kTwoPi * sin2_max / (1.0f + cos_max));
+}
+
+}  // namespace prism

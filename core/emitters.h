@@ -1,0 +1,69 @@
+// Emitters: every emissive triangle and sphere as an area light, chosen in proportion to emitted power.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/distribution_1d.h"
+#include "core/scene_desc.h"
+
+namespace prism {
+
+// A point sampled on an emitter, seen from a reference point.
+struct EmitterSample {
+  Vec3 p;        // point on the emitter
+  Vec3 p_error;  // error bound of p, for offsetting the shadow ray's far end
+  Vec3 n;        // unit front-face normal of the emitter at p
+  Vec2 uv;       // texture coordinates at p, for emissive textures
+  int material = -1;
+  int emitter = -1;
+  float pdf = 0;  // solid-angle density at the reference point, including the choice of emitter
+};
+
+class Emitters {
+ public:
+  Emitters() = default;
+  // Collects emitters from `desc`, which must outlive this object. Emitters are picked in
+  // proportion to their power: area x pi x the luminance of mean_emission (x2 if double-sided).
+  explicit Emitters(const SceneDesc& desc);
+
+  bool empty() const { return emitters_.empty(); }
+  size_t size() const { return emitters_.size(); }
+
+  // Samples a point on an emitter for shading point `ref`; pdf 0 when nothing can be sampled.
+  EmitterSample sample(const Vec3& ref, float u_pick, Vec2 u) const;
+  // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
+  float pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const;
+
+  // First emitter index of triangle primitive (instance, primitive) or -1: emitter = base + triangle.
+  int triangle_base(int instance, int primitive) const;
+  // Emitter index of sphere `s`, or -1.
+  int sphere_emitter(int s) const { return sphere_emitter_[s]; }
+  float pick_probability(int index) const { return pick_.pmf(index); }
+
+ private:
+  struct Emitter {
+    bool sphere = false;
+    int instance = -1;   // triangles: instance and primitive, to look up vertex attributes
+    int primitive = -1;
+    uint32_t index = 0;  // triangle within the primitive, or sphere index
+    Vec3 p0, p1, p2;     // triangles: world-space vertices, front face by winding x handedness
+    float area = 0;
+  };
+
+  EmitterSample sample_triangle(const Emitter& e, Vec2 u) const;
+  EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;
+  float sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
+
+  const SceneDesc* desc_ = nullptr;
+  std::vector<Emitter> emitters_;
+  Distribution1D pick_;
+  std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
+  std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
+  std::vector<int> sphere_emitter_;
+};
+
+// Mean of a material's emitted radiance over its texture (factor x strength x mean texel).
+Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m);
+
+}  // namespace prism

@@ -1,0 +1,42 @@
+// Sampler: the source of sample values for one pixel sample, a pure function of
+// (pixel, sample index, dimension, seed) so images never depend on thread scheduling.
+#pragma once
+
+#include <cstdint>
+
+#include "core/hash.h"
+#include "core/pcg32.h"
+#include "core/vec3.h"
+
+namespace prism {
+
+class Sampler {
+ public:
+  virtual ~Sampler() = default;
+  // Positions the sampler at sample `index` of pixel (x, y), dimension 0.
+  virtual void start_pixel_sample(int x, int y, uint64_t index) = 0;
+  virtual float next_1d() = 0;
+  virtual Vec2 next_2d() {
+    const float a = next_1d();
+    return {a, next_1d()};
+  }
+};
+
+// Independent uniform samples: pixel and seed choose a PCG32 stream; each sample index owns
+// a 2^16-value window of it, consumed one dimension at a time.
+class IndependentSampler final : public Sampler {
+ public:
+  explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
+
+  void start_pixel_sample(int x, int y, uint64_t index) override {
+    rng_.seed(hash_values(static_cast<uint64_t>(x), static_cast<uint64_t>(y), seed_), mix64(~seed_));
+    rng_.advance(index << 16);
+  }
+  float next_1d() override { return rng_.next_float(); }
+
+ private:
+  uint64_t seed_;
+  Pcg32 rng_;
+};
+
+}  // namespace prism

@@ -1,0 +1,220 @@
+#include "core/scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/embree_device.h"
+#include "core/spawn.h"
+#include "core/sphere_geometry.h"
+
+namespace prism {
+
+void validate_scene_desc(const SceneDesc& desc) {
+  auto fail = [&](const std::string& what) { throw std::invalid_argument(desc.source + ": " + what); };
+  const int n_materials = static_cast<int>(desc.materials.size());
+  for (size_t m = 0; m < desc.meshes.size(); ++m) {
+    for (size_t p = 0; p < desc.meshes[m].primitives.size(); ++p) {
+      const PrimitiveDesc& prim = desc.meshes[m].primitives[p];
+      const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+      if (prim.material < -1 || prim.material >= n_materials) fail(where + ": material index out of range");
+      if (prim.indices.size() % 3 != 0) fail(where + ": index count is not a multiple of 3");
+      if (!prim.normals.empty() && prim.normals.size() != prim.positions.size())
+        fail(where + ": normal count differs from position count");
+      if (!prim.uvs.empty() && prim.uvs.size() != prim.positions.size())
+        fail(where + ": uv count differs from position count");
+      for (uint32_t i : prim.indices)
+        if (i >= prim.positions.size()) fail(where + ": vertex index " + std::to_string(i) + " out of range");
+      for (const Vec3& v : prim.positions)
+        if (!is_finite(v)) fail(where + ": non-finite vertex position");
+    }
+  }
+  for (size_t i = 0; i < desc.instances.size(); ++i) {
+    const InstanceDesc& inst = desc.instances[i];
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(desc.meshes.size()))
+      fail("instance " + std::to_string(i) + ": mesh index out of range");
+    if (!inst.object_to_world.is_invertible()) fail("instance " + std::to_string(i) + ": singular transform");
+  }
+  for (size_t s = 0; s < desc.spheres.size(); ++s) {
+    const SphereDesc& sph = desc.spheres[s];
+    if (sph.material < -1 || sph.material >= n_materials)
+      fail("sphere " + std::to_string(s) + ": material index out of range");
+    if (!(sph.radius > 0) || !std::isfinite(sph.radius) || !is_finite(sph.center))
+      fail("sphere " + std::to_string(s) + ": radius must be positive and centre finite");
+  }
+  for (const TextureDesc& t : desc.textures)
+    if (t.image < 0 || t.image >= static_cast<int>(desc.images.size())) fail("texture image index out of range");
+  for (const MaterialDesc& m : desc.materials)
+    for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture})
+      if (r->texture >= static_cast<int>(desc.textures.size()))
+        fail("material '" + m.name + "': texture index out of range");
+}
+
+Scene::Scene(SceneDesc desc) : desc_(std::move(desc)) {
+  const auto start = std::chrono::steady_clock::now();
+  validate_scene_desc(desc_);
+  features_ = desc_.features();
+  RTCDevice device = embree_device();
+
+  mesh_scenes_.resize(desc_.meshes.size(), nullptr);
+  for (size_t m = 0; m < desc_.meshes.size(); ++m) {
+    RTCScene mesh_scene = rtcNewScene(device);
+    mesh_scenes_[m] = mesh_scene;
+    auto& prims = desc_.meshes[m].primitives;
+    for (size_t p = 0; p < prims.size(); ++p) {
+      PrimitiveDesc& prim = prims[p];
+      if (prim.triangle_count() == 0) continue;
+      // Embree loads vertices 16 bytes at a time: make room past the last float3.
+      prim.positions.reserve(prim.positions.size() + 1);
+      RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, prim.positions.data(), 0,
+                                 sizeof(Vec3), prim.positions.size());
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, prim.indices.data(), 0,
+                                 3 * sizeof(uint32_t), prim.triangle_count());
+      rtcCommitGeometry(geom);
+      rtcAttachGeometryByID(mesh_scene, geom, static_cast<unsigned>(p));
+      rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(mesh_scene);
+  }
+
+  top_ = rtcNewScene(device);
+  for (size_t i = 0; i < desc_.instances.size(); ++i) {
+    const InstanceDesc& inst = desc_.instances[i];
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, mesh_scenes_[inst.mesh]);
+    const std::array<float, 12> m = inst.object_to_world.matrix_float();
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(i));
+    rtcReleaseGeometry(geom);
+  }
+  if (!desc_.spheres.empty()) {
+    sphere_geom_id_ = static_cast<unsigned>(desc_.instances.size());  // instances hold ids 0..n-1
+    attach_spheres(device, top_, desc_.spheres, sphere_geom_id_);
+  }
+  rtcCommitScene(top_);
+  throw_on_embree_error("building the scene of " + desc_.source);
+  emitters_ = Emitters(desc_);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Scene::~Scene() {
+  if (top_) rtcReleaseScene(top_);
+  for (RTCScene s : mesh_scenes_)
+    if (s) rtcReleaseScene(s);
+}
+
+namespace {
+
+RTCRayHit to_embree(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x;
+  rh.ray.dir_y = ray.dir.y;
+  rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.t_min;
+  rh.ray.tfar = ray.t_max;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = ~0u;  // a zero mask misses everything
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCRayHit rh = to_embree(ray);
+  rtcIntersect1(top_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID == sphere_geom_id_)
+    reconstruct_sphere_hit(ray, rh, hit);
+  else
+    reconstruct_triangle_hit(rh, hit);
+  return true;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = to_embree(ray).ray;
+  rtcOccluded1(top_, &context, &r);
+  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+void Scene::reconstruct_triangle_hit(const RTCRayHit& rh, SurfaceHit& hit) const {
+  const int instance = static_cast<int>(rh.hit.instID[0]);
+  const InstanceDesc& inst = desc_.instances[instance];
+  const PrimitiveDesc& prim = desc_.meshes[inst.mesh].primitives[rh.hit.geomID];
+  const Transform& xf = inst.object_to_world;
+  const uint32_t* idx = &prim.indices[3 * size_t(rh.hit.primID)];
+  const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+
+  const Vec3 p0 = xf.point(prim.positions[idx[0]]);
+  const Vec3 p1 = xf.point(prim.positions[idx[1]]);
+  const Vec3 p2 = xf.point(prim.positions[idx[2]]);
+  hit.p = p0 * b0 + p1 * b1 + p2 * b2;
+  hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
+
+  // glTF 2.0 §3.7.4: a negative determinant makes the front face clockwise.
+  Vec3 ng = cross(p1 - p0, p2 - p0);
+  if (xf.flips_handedness()) ng = -ng;
+  const float len = length(ng);
+  if (len > 0 && std::isfinite(len)) {
+    hit.ng = ng / len;
+  } else {
+    // Degenerate in float after the transform: face the incoming ray.
+    hit.ng = normalize(-Vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
+  }
+
+  hit.ns = hit.ng;
+  if (!prim.normals.empty()) {
+    const Vec3 n = prim.normals[idx[0]] * b0 + prim.normals[idx[1]] * b1 + prim.normals[idx[2]] * b2;
+    const Vec3 nw = xf.normal(n);
+    const float nlen = length(nw);
+    if (nlen > 0 && std::isfinite(nlen)) hit.ns = nw / nlen;
+  }
+  hit.uv = {0, 0};
+  if (!prim.uvs.empty()) {
+    const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
+    hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+  }
+  hit.material = prim.material;
+  const int base = emitters_.triangle_base(instance, static_cast<int>(rh.hit.geomID));
+  hit.emitter = base >= 0 ? base + static_cast<int>(rh.hit.primID) : -1;
+}
+
+void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {
+  const SphereDesc& s = desc_.spheres[rh.hit.primID];
+  // Re-project onto the sphere: o + t d carries the error of t; the direction from the centre
+  // does not drift off the surface.
+  // Done in double so a small sphere far from the ray origin keeps its precision.
+  double local[3];
+  double len2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    local[i] = (double(ray.origin[i]) - s.center[i]) + double(ray.dir[i]) * hit.t;
+    len2 += local[i] * local[i];
+  }
+  const double len = std::sqrt(len2);
+  const Vec3 n = len > 0 ? Vec3(float(local[0] / len), float(local[1] / len), float(local[2] / len)) : Vec3(0, 1, 0);
+  hit.p = s.center + n * s.radius;
+  hit.p_error = (abs(s.center) + Vec3(s.radius)) * kHitRelativeError;
+  hit.ng = n;
+  hit.ns = n;
+  hit.uv = sphere_uv(n);
+  hit.material = s.material;
+  hit.emitter = emitters_.sphere_emitter(static_cast<int>(rh.hit.primID));
+}
+
+}  // namespace prism

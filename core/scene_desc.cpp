@@ -1,0 +1,66 @@
+#include "core/scene_desc.h"
+
+#include <algorithm>
+
+namespace prism {
+
+const MaterialDesc& SceneDesc::material(int m) const {
+  // glTF 2.0 §3.9.6: the default material is one with no properties specified, so every
+  // property takes its schema default (MaterialDesc's initialisers).
+  static const MaterialDesc kDefault = [] {
+    MaterialDesc d;
+    d.name = "(default)";
+    return d;
+  }();
+  return m >= 0 && m < static_cast<int>(materials.size()) ? materials[m] : kDefault;
+}
+
+SceneFeatures SceneDesc::features() const {
+  SceneFeatures f;
+  std::vector<int> uses(meshes.size(), 0);
+  for (const auto& inst : instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(meshes.size())) continue;
+    if (++uses[inst.mesh] > 1) f.instancing = true;
+    for (const auto& prim : meshes[inst.mesh].primitives) {
+      if (prim.triangle_count() > 0) f.triangles = true;
+      if (material(prim.material).is_emissive()) f.emitters = true;
+    }
+  }
+  f.spheres = !spheres.empty();
+  for (const auto& s : spheres)
+    if (material(s.material).is_emissive()) f.emitters = true;
+  f.textures = std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) {
+    return m.base_color_texture.present() || m.emissive_texture.present();
+  });
+  return f;
+}
+
+size_t SceneDesc::triangle_count() const {
+  size_t n = 0;
+  for (const auto& inst : instances)
+    if (inst.mesh >= 0 && inst.mesh < static_cast<int>(meshes.size()))
+      for (const auto& prim : meshes[inst.mesh].primitives) n += prim.triangle_count();
+  return n;
+}
+
+int SceneDesc::find_material(const std::string& name) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+Bounds3 scene_bounds(const SceneDesc& scene) {
+  Bounds3 b;
+  for (const auto& inst : scene.instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(scene.meshes.size())) continue;
+    for (const auto& prim : scene.meshes[inst.mesh].primitives)
+      for (const auto& p : prim.positions) b.extend(inst.object_to_world.point(p));
+  }
+  for (const auto& s : scene.spheres) {
+    b.extend(s.center - Vec3(s.radius));
+    b.extend(s.center + Vec3(s.radius));
+  }
+  return b;
+}
+
+}  // namespace prism

@@ -1,0 +1,137 @@
+// SceneDesc: the plain-data scene that loaders produce and Scene::build consumes (no files, no Embree).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "core/vec3.h"
+
+namespace prism {
+
+// Pixels in linear float, row 0 at the top (as images are stored), `channels` per texel.
+struct ImageDesc {
+  std::string name;
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> texels;
+};
+
+enum class WrapMode { Repeat, ClampToEdge, MirroredRepeat };
+
+struct TextureDesc {
+  int image = -1;
+  WrapMode wrap_s = WrapMode::Repeat, wrap_t = WrapMode::Repeat;
+  bool nearest = false;  // magnification filter NEAREST, else bilinear
+};
+
+struct TextureRef {
+  int texture = -1;  // index into SceneDesc::textures; -1 = none
+  int texcoord = 0;  // which TEXCOORD_n set (prism reads set 0)
+  bool present() const { return texture >= 0; }
+};
+
+// The glTF 2.0 material model as data. Colours are linear; base_color and emissive textures
+// are decoded from sRGB when loaded.
+struct MaterialDesc {
+  std::string name;
+  Rgb base_color{1, 1, 1};
+  float base_alpha = 1.0f;
+  TextureRef base_color_texture;
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  Rgb emissive{0, 0, 0};
+  float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  TextureRef emissive_texture;
+  bool double_sided = false;  // emits from both faces when true; from the front face only otherwise
+
+  bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
+};
+
+// One triangle list with one material (a glTF primitive). Normals and uvs are per vertex and
+// either empty or as long as positions; empty normals mean flat shading.
+struct PrimitiveDesc {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<Vec2> uvs;
+  std::vector<uint32_t> indices;  // 3 per triangle, each < positions.size()
+  int material = -1;              // -1 = the default material
+
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// A mesh in object space: the unit of instancing.
+struct MeshDesc {
+  std::string name;
+  std::vector<PrimitiveDesc> primitives;
+};
+
+// A placement of a mesh in the world.
+struct InstanceDesc {
+  std::string name;
+  int mesh = -1;
+  Transform object_to_world;
+};
+
+// An analytic sphere in world space.
+struct SphereDesc {
+  std::string name;
+  Vec3 center;
+  float radius = 1.0f;
+  int material = -1;
+};
+
+enum class Projection { Perspective, Orthographic };
+
+// A camera placed in the world: it looks down its local -Z axis with +Y up (glTF convention).
+struct CameraDesc {
+  std::string name;       // the camera's own name, else its node's
+  std::string node_name;  // the node that places it
+  Projection projection = Projection::Perspective;
+  Transform camera_to_world;
+  float yfov = 0.8f;                  // perspective: vertical field of view, radians
+  std::optional<float> aspect_ratio;  // width / height, when the file gives one
+  float xmag = 1.0f, ymag = 1.0f;     // orthographic: half extents
+  float znear = 0.0f;
+  float zfar = 0.0f;  // 0 = infinite
+};
+
+// What a scene contains, so the renderer pays only for what is used.
+struct SceneFeatures {
+  bool triangles = false;
+  bool spheres = false;
+  bool instancing = false;  // some mesh is placed more than once
+  bool textures = false;
+  bool emitters = false;
+};
+
+struct SceneDesc {
+  std::string source;  // the file it came from, for messages
+  std::vector<ImageDesc> images;
+  std::vector<TextureDesc> textures;
+  std::vector<MaterialDesc> materials;
+  std::vector<MeshDesc> meshes;
+  std::vector<InstanceDesc> instances;
+  std::vector<SphereDesc> spheres;
+  std::vector<CameraDesc> cameras;  // in node order; the first is the default
+
+  // The material for index `m`, or the glTF default material for -1.
+  const MaterialDesc& material(int m) const;
+  SceneFeatures features() const;
+  size_t triangle_count() const;  // over all instances
+  int find_material(const std::string& name) const;  // -1 when absent
+};
+
+struct Bounds3 {
+  Vec3 lo{1e30f}, hi{-1e30f};
+  void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+  bool empty() const { return lo.x > hi.x; }
+  Vec3 center() const { return (lo + hi) * 0.5f; }
+  Vec3 diagonal() const { return hi - lo; }
+};
+
+// World-space bounds of all instances and spheres.
+Bounds3 scene_bounds(const SceneDesc& scene);
+
+}  // namespace prism

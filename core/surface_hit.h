@@ -1,0 +1,19 @@
+// SurfaceHit: what a ray learned at the first surface it hit, in world space.
+#pragma once
+
+#include "core/vec3.h"
+
+namespace prism {
+
+struct SurfaceHit {
+  float t = 0;
+  Vec3 p;          // hit point, recomputed from the primitive (not o + t d)
+  Vec3 p_error;    // per-axis bound on the error of p, for offsetting spawned rays
+  Vec3 ng;         // unit geometric normal on the front side (winding / outward sphere)
+  Vec3 ns;         // unit shading normal (interpolated vertex normals, else ng)
+  Vec2 uv;         // TEXCOORD_0 (0,0 when the primitive has none)
+  int material = -1;
+  int emitter = -1;  // index into Emitters, or -1 when the surface does not emit
+};
+
+}  // namespace prism

@@ -1,0 +1,459 @@
+#include "io/gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "io/errors.h"
+#include "io/gltf_accessor.h"
+#include "io/image_decode.h"
+
+namespace prism {
+
+const std::vector<std::string>& supported_gltf_extensions() {
+  static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength"};
+  return kSupported;
+}
+
+namespace {
+
+constexpr int kMaxNodeDepth = 1024;
+
+bool is_supported(const std::string& extension) {
+  const auto& s = supported_gltf_extensions();
+  return std::find(s.begin(), s.end(), extension) != s.end();
+}
+
+std::string quoted_name(const std::string& kind, int index, const std::string& name) {
+  return kind + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
+}
+
+// Keeps the encoded bytes of URI images (tinygltf has read the file or data URI) for
+// OpenImageIO to decode later. Images in buffer views are left alone: tinygltf 2.7 hands over
+// an unchecked pointer for those, so they are range-checked and read by the converter instead.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0) return true;
+  if (bytes && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+double number(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
+
+class Converter {
+ public:
+  Converter(const tinygltf::Model& model, std::string file, Diagnostics& diag)
+      : model_(model), file_(std::move(file)), diag_(diag) {}
+
+  SceneDesc run() {
+    check_extensions();
+    desc_.source = file_;
+    for (size_t m = 0; m < model_.materials.size(); ++m) desc_.materials.push_back(convert_material(int(m)));
+    report_unrendered_features();
+    for (int root : scene_roots()) visit(root, Transform(), 0);
+    std::stable_sort(cameras_by_node_.begin(), cameras_by_node_.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& [node, cam] : cameras_by_node_) desc_.cameras.push_back(std::move(cam));
+    if (desc_.instances.empty()) diag_.warn("the scene has no triangle meshes");
+    return std::move(desc_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& element, const std::string& reason) const {
+    throw InputError(file_, element, reason);
+  }
+
+  void check_extensions() {
+    std::string unsupported;
+    for (const auto& e : model_.extensionsRequired)
+      if (!is_supported(e)) unsupported += (unsupported.empty() ? "" : ", ") + e;
+    if (!unsupported.empty())
+      fail("extensionsRequired", "prism does not support " + unsupported + " (supported: KHR_materials_emissive_strength)");
+    for (const auto& e : model_.extensionsUsed)
+      if (!is_supported(e)) diag_.warn("extension " + e + " is not supported yet and is ignored");
+  }
+
+  void report_unrendered_features() {
+    if (!model_.materials.empty())
+      diag_.warn("glTF metallic-roughness shading is not implemented yet: materials render as Lambertian diffuse "
+                 "with their base colour (" + std::to_string(model_.materials.size()) + " materials)");
+    if (!model_.animations.empty())
+      diag_.warn(std::to_string(model_.animations.size()) + " animations ignored: the scene renders at rest");
+    if (!model_.skins.empty()) diag_.warn(std::to_string(model_.skins.size()) + " skins ignored: meshes render unskinned");
+    if (!model_.lights.empty())
+      diag_.warn("KHR_lights_punctual: " + std::to_string(model_.lights.size()) +
+                 " punctual lights are not rendered yet (emissive surfaces are)");
+  }
+
+  // The nodes to start from: the default scene's, else scene 0's, else every parentless node.
+  std::vector<int> scene_roots() {
+    const int n_scenes = static_cast<int>(model_.scenes.size());
+    int scene = model_.defaultScene;
+    if (scene >= n_scenes) {
+      diag_.warn("default scene " + std::to_string(scene) + " does not exist; using scene 0");
+      scene = -1;
+    }
+    if (scene < 0 && n_scenes > 0) scene = 0;
+    if (scene >= 0) return model_.scenes[scene].nodes;
+    std::vector<bool> is_child(model_.nodes.size(), false);
+    for (const auto& n : model_.nodes)
+      for (int c : n.children)
+        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = true;
+    std::vector<int> roots;
+    for (size_t i = 0; i < model_.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    if (!roots.empty()) diag_.warn("the file has no scenes; rendering every root node");
+    return roots;
+  }
+
+  Transform local_transform(const tinygltf::Node& node, const std::string& where) const {
+    auto finite = [&](const std::vector<double>& v, size_t want, const char* what) {
+      if (!v.empty() && v.size() != want)
+        fail(where, std::string(what) + " has " + std::to_string(v.size()) + " numbers, expected " + std::to_string(want));
+      for (double x : v)
+        if (!std::isfinite(x)) fail(where, std::string(what) + " has a non-finite value");
+    };
+    finite(node.matrix, 16, "matrix");
+    finite(node.translation, 3, "translation");
+    finite(node.rotation, 4, "rotation");
+    finite(node.scale, 3, "scale");
+    if (node.matrix.size() == 16) {
+      std::array<double, 16> m{};
+      std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
+      return Transform::from_column_major(m);
+    }
+    Transform t;
+    if (node.translation.size() == 3)
+      t = Transform::translate(Vec3(float(node.translation[0]), float(node.translation[1]), float(node.translation[2])));
+    if (node.rotation.size() == 4)
+      t = t * Transform::rotate_quaternion(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
+    if (node.scale.size() == 3)
+      t = t * Transform::scale(Vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+    return t;
+  }
+
+  void visit(int index, const Transform& parent, int depth) {
+    if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+      fail("node reference", "node index " + std::to_string(index) + " out of range (" +
+                                 std::to_string(model_.nodes.size()) + " nodes)");
+    const tinygltf::Node& node = model_.nodes[index];
+    const std::string where = quoted_name("node", index, node.name);
+    if (on_path_.count(index)) fail(where, "node hierarchy has a cycle through this node");
+    if (visited_.count(index)) fail(where, "node has more than one parent (glTF node hierarchies are trees)");
+    if (depth > kMaxNodeDepth) fail(where, "node hierarchy is deeper than " + std::to_string(kMaxNodeDepth));
+    visited_.insert(index);
+    on_path_.insert(index);
+    const Transform world = parent * local_transform(node, where);
+
+    if (node.mesh >= 0) {
+      if (node.mesh >= static_cast<int>(model_.meshes.size()))
+        fail(where, "mesh index " + std::to_string(node.mesh) + " out of range");
+      if (node.skin >= 0) diag_.warn("skinned meshes render in their bind pose");
+      if (!world.is_invertible()) {
+        diag_.warn(where + ": zero-scale transform; its mesh is not rendered");
+      } else {
+        InstanceDesc inst;
+        inst.name = node.name;
+        inst.mesh = scene_mesh(node.mesh);
+        inst.object_to_world = world;
+        if (inst.mesh >= 0) desc_.instances.push_back(std::move(inst));
+      }
+    }
+    if (node.camera >= 0) {
+      if (node.camera >= static_cast<int>(model_.cameras.size()))
+        fail(where, "camera index " + std::to_string(node.camera) + " out of range");
+      cameras_by_node_.emplace_back(index, convert_camera(node.camera, node.name, world));
+    }
+    for (int child : node.children) visit(child, world, depth + 1);
+    on_path_.erase(index);
+  }
+
+  CameraDesc convert_camera(int index, const std::string& node_name, const Transform& world) const {
+    const tinygltf::Camera& c = model_.cameras[index];
+    const std::string where = quoted_name("camera", index, c.name);
+    CameraDesc cam;
+    cam.name = !c.name.empty() ? c.name : node_name;
+    cam.node_name = node_name;
+    cam.camera_to_world = world;
+    if (c.type == "orthographic") {
+      const auto& o = c.orthographic;
+      if (!(std::isfinite(o.xmag) && std::isfinite(o.ymag) && o.xmag != 0 && o.ymag != 0))
+        fail(where, "orthographic xmag and ymag must be finite and non-zero");
+      cam.projection = Projection::Orthographic;
+      cam.xmag = float(std::abs(o.xmag));
+      cam.ymag = float(std::abs(o.ymag));
+      cam.znear = float(std::max(0.0, o.znear));
+      cam.zfar = float(std::max(0.0, o.zfar));
+    } else if (c.type == "perspective") {
+      const auto& p = c.perspective;
+      if (!(p.yfov > 0 && p.yfov < 3.14159265358979)) fail(where, "yfov must be in (0, pi) radians");
+      cam.projection = Projection::Perspective;
+      cam.yfov = float(p.yfov);
+      if (p.aspectRatio > 0 && std::isfinite(p.aspectRatio)) cam.aspect_ratio = float(p.aspectRatio);
+      cam.znear = float(std::max(0.0, p.znear));
+      cam.zfar = p.zfar > p.znear && std::isfinite(p.zfar) ? float(p.zfar) : 0.0f;
+    } else {
+      fail(where, "unknown camera type '" + c.type + "'");
+    }
+    return cam;
+  }
+
+  int scene_mesh(int gltf_mesh) {
+    if (auto it = mesh_map_.find(gltf_mesh); it != mesh_map_.end()) return it->second;
+    const tinygltf::Mesh& mesh = model_.meshes[gltf_mesh];
+    MeshDesc out;
+    out.name = mesh.name;
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const std::string where = quoted_name("mesh", gltf_mesh, mesh.name) + " primitive " + std::to_string(p);
+      PrimitiveDesc prim;
+      if (convert_primitive(mesh.primitives[p], where, prim)) out.primitives.push_back(std::move(prim));
+    }
+    const int index = out.primitives.empty() ? -1 : static_cast<int>(desc_.meshes.size());
+    if (index >= 0) desc_.meshes.push_back(std::move(out));
+    mesh_map_[gltf_mesh] = index;
+    return index;
+  }
+
+  bool convert_primitive(const tinygltf::Primitive& p, const std::string& where, PrimitiveDesc& prim) {
+    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      diag_.warn("points and lines primitives are not rendered (mode " + std::to_string(mode) + ")");
+      return false;
+    }
+    const auto pos = p.attributes.find("POSITION");
+    if (pos == p.attributes.end()) {
+      diag_.warn(where + ": no POSITION attribute; skipped");
+      return false;
+    }
+    if (!p.targets.empty()) diag_.warn("morph targets ignored: meshes render in their base shape");
+    for (const auto& [name, accessor] : p.attributes)
+      if (name.rfind("COLOR_", 0) == 0) diag_.warn("vertex colours (" + name + ") are not supported yet and are ignored");
+    if (p.material < -1 || p.material >= static_cast<int>(model_.materials.size()))
+      fail(where, "material index " + std::to_string(p.material) + " out of range");
+    prim.material = p.material;
+
+    const std::vector<float> positions = read_accessor_floats(model_, pos->second, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                                              file_, where + " POSITION");
+    const size_t n = positions.size() / 3;
+    prim.positions.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      prim.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+      if (!is_finite(prim.positions[i])) fail(where + " POSITION", "vertex " + std::to_string(i) + " is not finite");
+    }
+    if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
+      const std::vector<float> normals =
+          read_accessor_floats(model_, it->second, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, file_, where + " NORMAL");
+      if (normals.size() != positions.size()) fail(where + " NORMAL", "count differs from POSITION");
+      prim.normals.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        prim.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+        if (!is_finite(prim.normals[i])) fail(where + " NORMAL", "normal " + std::to_string(i) + " is not finite");
+      }
+    }
+    if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
+      const std::vector<float> uvs = read_accessor_floats(
+          model_, it->second, 2,
+          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+          file_, where + " TEXCOORD_0");
+      if (uvs.size() / 2 != n) fail(where + " TEXCOORD_0", "count differs from POSITION");
+      prim.uvs.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        prim.uvs[i] = {uvs[2 * i], uvs[2 * i + 1]};
+        if (!std::isfinite(prim.uvs[i].x) || !std::isfinite(prim.uvs[i].y))
+          fail(where + " TEXCOORD_0", "uv " + std::to_string(i) + " is not finite");
+      }
+    }
+
+    std::vector<uint32_t> order;
+    if (p.indices >= 0) {
+      order = read_accessor_indices(model_, p.indices, file_, where + " indices");
+      for (size_t k = 0; k < order.size(); ++k)
+        if (order[k] >= n)
+          fail(where + " indices", "index " + std::to_string(order[k]) + " at position " + std::to_string(k) +
+                                       " is not below the vertex count " + std::to_string(n));
+    } else {
+      order.resize(n);
+      for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
+    }
+    prim.indices = triangulate(order, mode);
+    if (mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
+      diag_.warn(where + ": index count " + std::to_string(order.size()) + " is not a multiple of 3; the rest is ignored");
+    return true;
+  }
+
+  // Triangle list from a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN index order (glTF 2.0 §3.7.2.1).
+  static std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode) {
+    std::vector<uint32_t> tris;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      tris.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 3 * 3));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      // p_i = {v_i, v_(i+1+i%2), v_(i+2-i%2)}: odd triangles swap two vertices to keep the winding.
+      for (size_t i = 0; i + 2 < v.size(); ++i) tris.insert(tris.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    } else {
+      for (size_t i = 1; i + 1 < v.size(); ++i) tris.insert(tris.end(), {v[i], v[i + 1], v[0]});
+    }
+    return tris;
+  }
+
+  MaterialDesc convert_material(int index) {
+    const tinygltf::Material& m = model_.materials[index];
+    const std::string where = quoted_name("material", index, m.name);
+    MaterialDesc out;
+    out.name = m.name;
+    const auto& pbr = m.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4) {
+      out.base_color = Rgb(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]));
+      out.base_alpha = float(pbr.baseColorFactor[3]);
+    }
+    out.metallic = float(pbr.metallicFactor);
+    out.roughness = float(pbr.roughnessFactor);
+    if (m.emissiveFactor.size() == 3)
+      out.emissive = Rgb(float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2]));
+    out.double_sided = m.doubleSided;
+    if (!is_finite(out.base_color) || !is_finite(out.emissive) || !std::isfinite(out.base_alpha))
+      fail(where, "colour factors must be finite");
+    out.base_color = max(out.base_color, Rgb(0.0f));
+    out.emissive = max(out.emissive, Rgb(0.0f));
+
+    for (const auto& [name, value] : m.extensions) {
+      if (name == "KHR_materials_emissive_strength") {
+        const double s = number(value.Get("emissiveStrength"), 1.0);
+        if (!(s >= 0 && std::isfinite(s))) fail(where, "emissiveStrength must be finite and non-negative");
+        out.emissive_strength = float(s);
+      } else {
+        diag_.warn("extension " + name + " is not supported yet and is ignored");
+      }
+    }
+    out.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         pbr.baseColorTexture.extensions, ColorSpace::Srgb, where + " baseColorTexture");
+    out.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
+                                       ColorSpace::Srgb, where + " emissiveTexture");
+    if (pbr.metallicRoughnessTexture.index >= 0) diag_.warn("metallicRoughnessTexture is not supported yet and is ignored");
+    if (m.normalTexture.index >= 0) diag_.warn("normalTexture (normal mapping) is not supported yet and is ignored");
+    if (m.occlusionTexture.index >= 0)
+      diag_.warn("occlusionTexture ignored: a path tracer computes occlusion itself");
+    if (m.alphaMode != "OPAQUE") diag_.warn("alphaMode " + m.alphaMode + " is not supported yet: surfaces render opaque");
+    return out;
+  }
+
+  TextureRef texture_ref(int texture, int texcoord, const tinygltf::ExtensionMap& extensions, ColorSpace space,
+                         const std::string& where) {
+    TextureRef ref;
+    if (texture < 0) return ref;
+    if (texture >= static_cast<int>(model_.textures.size()))
+      fail(where, "texture index " + std::to_string(texture) + " out of range");
+    if (texcoord != 0) diag_.warn("textures on TEXCOORD_1 and above are read with TEXCOORD_0");
+    if (extensions.count("KHR_texture_transform")) diag_.warn("extension KHR_texture_transform is not supported yet and is ignored");
+    const auto key = std::make_pair(texture, space == ColorSpace::Srgb);
+    if (auto it = texture_map_.find(key); it != texture_map_.end()) {
+      ref.texture = it->second;
+      return ref;
+    }
+    const tinygltf::Texture& t = model_.textures[texture];
+    const std::string twhere = quoted_name("texture", texture, t.name);
+    if (t.source < 0) {
+      diag_.warn(twhere + ": no image prism can decode (image extensions are not supported); texture ignored");
+      texture_map_[key] = -1;
+      return ref;
+    }
+    if (t.source >= static_cast<int>(model_.images.size()))
+      fail(twhere, "image index " + std::to_string(t.source) + " out of range");
+    TextureDesc desc;
+    desc.image = scene_image(t.source, space);
+    if (t.sampler >= 0) {
+      if (t.sampler >= static_cast<int>(model_.samplers.size()))
+        fail(twhere, "sampler index " + std::to_string(t.sampler) + " out of range");
+      const tinygltf::Sampler& s = model_.samplers[t.sampler];
+      desc.wrap_s = wrap_mode(s.wrapS);
+      desc.wrap_t = wrap_mode(s.wrapT);
+      desc.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    }
+    ref.texture = static_cast<int>(desc_.textures.size());
+    desc_.textures.push_back(desc);
+    texture_map_[key] = ref.texture;
+    return ref;
+  }
+
+  static WrapMode wrap_mode(int gl) {
+    if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return WrapMode::ClampToEdge;
+    if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return WrapMode::MirroredRepeat;
+    return WrapMode::Repeat;
+  }
+
+  int scene_image(int gltf_image, ColorSpace space) {
+    const auto key = std::make_pair(gltf_image, space == ColorSpace::Srgb);
+    if (auto it = image_map_.find(key); it != image_map_.end()) return it->second;
+    const tinygltf::Image& img = model_.images[gltf_image];
+    const std::string where = quoted_name("image", gltf_image, img.name.empty() ? img.uri.substr(0, 64) : img.name);
+    ImageDesc out;
+    if (img.bufferView >= 0) {
+      const auto [data, size] = buffer_view_bytes(model_, img.bufferView, file_, where);
+      out = decode_image(data, size, space, file_, where);
+    } else {
+      if (img.image.empty()) fail(where, "no image data (missing file or empty data URI)");
+      out = decode_image(img.image.data(), img.image.size(), space, file_, where);
+    }
+    out.name = img.name.empty() ? img.uri : img.name;
+    const int index = static_cast<int>(desc_.images.size());
+    desc_.images.push_back(std::move(out));
+    image_map_[key] = index;
+    return index;
+  }
+
+  const tinygltf::Model& model_;
+  std::string file_;
+  Diagnostics& diag_;
+  SceneDesc desc_;
+  std::set<int> on_path_, visited_;
+  std::map<int, int> mesh_map_;
+  std::map<std::pair<int, bool>, int> texture_map_, image_map_;
+  std::vector<std::pair<int, CameraDesc>> cameras_by_node_;
+};
+
+bool is_glb(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 4 && bytes[0] == 'g' && bytes[1] == 'l' && bytes[2] == 'T' && bytes[3] == 'F';
+}
+
+}  // namespace
+
+SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const std::string& base_dir,
+                                const std::string& name, Diagnostics& diag) {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keep_encoded_image, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok;
+  if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(name, "", "file is larger than 4 GiB");
+  if (is_glb(bytes)) {
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base_dir);
+  } else {
+    const std::string text(bytes.begin(), bytes.end());
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), base_dir);
+  }
+  auto trim = [](std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s;
+  };
+  if (!ok || !err.empty()) throw InputError(name, "", "not a loadable glTF file: " + trim(err.empty() ? warn : err));
+  if (!warn.empty()) diag.warn("glTF parser: " + trim(warn));
+  return Converter(model, name, diag).run();
+}
+
+SceneDesc load_gltf(const std::string& path, Diagnostics& diag) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open for reading");
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return load_gltf_from_memory(bytes, base.empty() ? "." : base, path, diag);
+}
+
+}  // namespace prism

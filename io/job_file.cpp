@@ -1,0 +1,222 @@
+#include "io/job_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "io/errors.h"
+
+namespace prism {
+
+using nlohmann::json;
+
+namespace {
+
+class JobParser {
+ public:
+  JobParser(std::string file, Diagnostics& diag) : file_(std::move(file)), diag_(diag) {}
+
+  JobFile parse(const json& root) {
+    JobFile job;
+    job.path = file_;
+    expect_object(root, "$");
+    warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "seed", "camera",
+                             "integrator", "materials", "spheres"});
+    const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
+    auto relative = [&](const std::string& p) {
+      const std::filesystem::path path(p);
+      return (path.is_absolute() || dir.empty() ? path : dir / path).lexically_normal().string();
+    };
+    if (root.contains("scene")) job.scene = relative(string_at(root["scene"], "$.scene"));
+    if (root.contains("output")) job.output = relative(string_at(root["output"], "$.output"));
+    if (root.contains("preview")) job.preview = relative(string_at(root["preview"], "$.preview"));
+    if (root.contains("resolution")) {
+      const json& r = root["resolution"];
+      if (!r.is_array() || r.size() != 2) fail("$.resolution", "expected [width, height]");
+      job.width = int_at(r[0], "$.resolution[0]", 1, 1 << 16);
+      job.height = int_at(r[1], "$.resolution[1]", 1, 1 << 16);
+    }
+    if (root.contains("spp")) job.spp = int_at(root["spp"], "$.spp", 1, 1 << 30);
+    if (root.contains("max_depth")) job.max_depth = int_at(root["max_depth"], "$.max_depth", 0, 1 << 16);
+    if (root.contains("seed")) {
+      const json& s = root["seed"];
+      if (!s.is_number_unsigned() && !(s.is_number_integer() && s.get<int64_t>() >= 0))
+        fail("$.seed", "expected a non-negative integer");
+      job.seed = s.get<uint64_t>();
+    }
+    if (root.contains("camera")) {
+      const json& c = root["camera"];
+      if (c.is_string()) job.camera = c.get<std::string>();
+      else job.camera = std::to_string(int_at(c, "$.camera", 0, std::numeric_limits<int>::max()));
+    }
+    if (root.contains("integrator")) job.integrator = string_at(root["integrator"], "$.integrator");
+    if (root.contains("materials")) {
+      const json& m = root["materials"];
+      expect_object(m, "$.materials");
+      for (const auto& [name, value] : m.items()) job.materials.push_back(material(name, value, "$.materials." + name));
+    }
+    if (root.contains("spheres")) {
+      const json& list = root["spheres"];
+      if (!list.is_array()) fail("$.spheres", "expected an array");
+      for (size_t i = 0; i < list.size(); ++i) job.spheres.push_back(sphere(list[i], i, job));
+    }
+    return job;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& why) const { throw InputError(file_, where, why); }
+
+  void expect_object(const json& j, const std::string& where) const {
+    if (!j.is_object()) fail(where, "expected an object");
+  }
+
+  void warn_unknown(const json& j, const std::string& where, const std::set<std::string>& known) {
+    for (const auto& [key, value] : j.items())
+      if (!known.count(key)) diag_.warn(file_ + ": " + where + "." + key + ": unknown key, ignored");
+  }
+
+  std::string string_at(const json& j, const std::string& where) const {
+    if (!j.is_string()) fail(where, "expected a string");
+    return j.get<std::string>();
+  }
+
+  int int_at(const json& j, const std::string& where, int lo, int hi) const {
+    if (!j.is_number_integer()) fail(where, "expected an integer");
+    const auto v = j.get<int64_t>();
+    if (v < lo || v > hi) fail(where, "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+    return static_cast<int>(v);
+  }
+
+  float number_at(const json& j, const std::string& where, double lo, double hi) const {
+    if (!j.is_number()) fail(where, "expected a number");
+    const double v = j.get<double>();
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      std::ostringstream range;
+      range << "must be a finite number between " << lo << " and " << hi;
+      fail(where, range.str());
+    }
+    return static_cast<float>(v);
+  }
+
+  Vec3 vec3_at(const json& j, const std::string& where, double lo, double hi) const {
+    if (!j.is_array() || j.size() != 3) fail(where, "expected an array of 3 numbers");
+    return {number_at(j[0], where + "[0]", lo, hi), number_at(j[1], where + "[1]", lo, hi),
+            number_at(j[2], where + "[2]", lo, hi)};
+  }
+
+  MaterialEdit material(const std::string& name, const json& j, const std::string& where) {
+    expect_object(j, where);
+    warn_unknown(j, where, {"base_color", "metallic", "roughness", "emissive", "emissive_strength", "double_sided"});
+    MaterialEdit m;
+    m.name = name;
+    constexpr double kMax = 3.0e38;
+    if (j.contains("base_color")) m.base_color = vec3_at(j["base_color"], where + ".base_color", 0, 1);
+    if (j.contains("metallic")) m.metallic = number_at(j["metallic"], where + ".metallic", 0, 1);
+    if (j.contains("roughness")) m.roughness = number_at(j["roughness"], where + ".roughness", 0, 1);
+    if (j.contains("emissive")) m.emissive = vec3_at(j["emissive"], where + ".emissive", 0, kMax);
+    if (j.contains("emissive_strength"))
+      m.emissive_strength = number_at(j["emissive_strength"], where + ".emissive_strength", 0, kMax);
+    if (j.contains("double_sided")) {
+      if (!j["double_sided"].is_boolean()) fail(where + ".double_sided", "expected true or false");
+      m.double_sided = j["double_sided"].get<bool>();
+    }
+    return m;
+  }
+
+  JobSphere sphere(const json& j, size_t index, JobFile& job) {
+    const std::string where = "$.spheres[" + std::to_string(index) + "]";
+    expect_object(j, where);
+    warn_unknown(j, where, {"name", "center", "radius", "material"});
+    JobSphere s;
+    s.name = j.contains("name") ? string_at(j["name"], where + ".name") : "sphere " + std::to_string(index);
+    if (!j.contains("center")) fail(where, "missing \"center\"");
+    if (!j.contains("radius")) fail(where, "missing \"radius\"");
+    s.center = vec3_at(j["center"], where + ".center", -3.0e38, 3.0e38);
+    s.radius = number_at(j["radius"], where + ".radius", 0, 3.0e38);
+    if (!(s.radius > 0)) fail(where + ".radius", "must be positive");
+    if (j.contains("material")) {
+      const json& m = j["material"];
+      if (m.is_string()) {
+        s.material = m.get<std::string>();
+      } else if (m.is_object()) {
+        // An inline material becomes a job material named after the sphere.
+        s.material = "(sphere " + std::to_string(index) + ")";
+        job.materials.push_back(material(s.material, m, where + ".material"));
+      } else {
+        fail(where + ".material", "expected a material name or an object");
+      }
+    }
+    return s;
+  }
+
+  std::string file_;
+  Diagnostics& diag_;
+};
+
+void apply_edit(const MaterialEdit& e, MaterialDesc& m) {
+  if (e.base_color) m.base_color = *e.base_color;
+  if (e.metallic) m.metallic = *e.metallic;
+  if (e.roughness) m.roughness = *e.roughness;
+  if (e.emissive) m.emissive = *e.emissive;
+  if (e.emissive_strength) m.emissive_strength = *e.emissive_strength;
+  if (e.double_sided) m.double_sided = *e.double_sided;
+}
+
+}  // namespace
+
+JobFile parse_job_json(const std::string& text, const std::string& path, Diagnostics& diag) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", std::string("invalid JSON: ") + e.what());
+  }
+  return JobParser(path, diag).parse(root);
+}
+
+JobFile parse_job_file(const std::string& path, Diagnostics& diag) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open job file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_job_json(text.str(), path, diag);
+}
+
+void apply_job_edits(const JobFile& job, SceneDesc& scene) {
+  for (const MaterialEdit& e : job.materials) {
+    bool matched = false;
+    for (MaterialDesc& m : scene.materials) {
+      if (m.name != e.name) continue;
+      apply_edit(e, m);
+      matched = true;
+    }
+    if (!matched) {
+      // A material the job defines: glTF defaults, then the job's fields.
+      MaterialDesc m;
+      m.name = e.name;
+      apply_edit(e, m);
+      scene.materials.push_back(m);
+    }
+  }
+  for (size_t i = 0; i < job.spheres.size(); ++i) {
+    const JobSphere& js = job.spheres[i];
+    SphereDesc s;
+    s.name = js.name;
+    s.center = js.center;
+    s.radius = js.radius;
+    if (!js.material.empty()) {
+      s.material = scene.find_material(js.material);
+      if (s.material < 0)
+        throw InputError(job.path, "$.spheres[" + std::to_string(i) + "].material",
+                         "no material named '" + js.material + "' in the scene or the job");
+    }
+    scene.spheres.push_back(s);
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,53 @@
+// Job files: JSON that names a glTF scene and render settings, adds analytic spheres and
+// overrides materials by name.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene_desc.h"
+#include "io/diagnostics.h"
+
+namespace prism {
+
+// Material fields a job may set; absent fields keep the glTF value (or the glTF default for a
+// material the job defines).
+struct MaterialEdit {
+  std::string name;
+  std::optional<Rgb> base_color;
+  std::optional<float> metallic, roughness;
+  std::optional<Rgb> emissive;
+  std::optional<float> emissive_strength;
+  std::optional<bool> double_sided;
+};
+
+struct JobSphere {
+  std::string name;
+  Vec3 center;
+  float radius = 1;
+  std::string material;  // a material name (from the glTF or the job), "" = default material
+};
+
+struct JobFile {
+  std::string path;
+  std::optional<std::string> scene;  // glTF path, resolved against the job file's folder
+  std::optional<std::string> output, preview;
+  std::optional<int> width, height, spp, max_depth;
+  std::optional<uint64_t> seed;
+  std::optional<std::string> camera, integrator;
+  std::vector<MaterialEdit> materials;
+  std::vector<JobSphere> spheres;
+};
+
+// Parses a job file. Type errors throw InputError naming the JSON path and the expected type;
+// unknown keys are warned about.
+JobFile parse_job_file(const std::string& path, Diagnostics& diag);
+JobFile parse_job_json(const std::string& text, const std::string& path, Diagnostics& diag);
+
+// Applies the job's material edits and spheres to a loaded scene. A sphere naming an unknown
+// material throws InputError.
+void apply_job_edits(const JobFile& job, SceneDesc& scene);
+
+}  // namespace prism

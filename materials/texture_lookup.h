@@ -1,0 +1,20 @@
+// Texture lookup: bilinear (or nearest) filtering with glTF sampler wrap modes.
+#pragma once
+
+#include "core/scene_desc.h"
+
+namespace prism {
+
+struct Rgba {
+  Rgb rgb;
+  float a = 1.0f;
+};
+
+// Filtered value of `ref` at uv (glTF convention: (0,0) is the top-left of the image). An RGB or
+// grey image gives alpha 1; a grey image is replicated to RGB.
+Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv);
+
+// Integer texel coordinate i wrapped into [0, n) by `mode`.
+int wrap_texel(int i, int n, WrapMode mode);
+
+}  // namespace prism

@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""Writes cornell-box.gltf: the Cornell box from the measured data published by the Cornell
+University Program of Computer Graphics (www.graphics.cornell.edu/online/box/data.html),
+converted from millimetres to metres. Standard library only; run it to regenerate the file."""
+import base64
+import json
+import math
+import struct
+from pathlib import Path
+
+MM = 0.001  # the published data is in millimetres
+
+# Linear-RGB reflectances commonly used for the box's measured spectra.
+MATERIALS = {
+    "white": (0.725, 0.71, 0.68),
+    "red": (0.63, 0.065, 0.05),
+    "green": (0.14, 0.45, 0.091),
+    "light": (0.78, 0.78, 0.78),
+}
+LIGHT_RADIANCE = (17.0, 12.0, 4.0)  # W / (sr m^2) per channel
+
+BOX_CENTRE = (278.0, 274.4, 279.6)
+
+# Each surface: name, material, quads (4 corners each), and where its front faces point:
+# "in" = toward the box centre, "out" = away from the object's own centre, or a fixed vector.
+SURFACES = [
+    ("floor", "white", [[(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]], "in"),
+    ("ceiling", "white", [[(556, 548.8, 0), (556, 548.8, 559.2), (0, 548.8, 559.2), (0, 548.8, 0)]], "in"),
+    ("back_wall", "white", [[(549.6, 0, 559.2), (0, 0, 559.2), (0, 548.8, 559.2), (556, 548.8, 559.2)]], "in"),
+    ("right_wall", "green", [[(0, 0, 559.2), (0, 0, 0), (0, 548.8, 0), (0, 548.8, 559.2)]], "in"),
+    ("left_wall", "red", [[(552.8, 0, 0), (549.6, 0, 559.2), (556, 548.8, 559.2), (556, 548.8, 0)]], "in"),
+    ("short_block", "white", [
+        [(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)],
+        [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)],
+        [(130, 0, 65), (130, 165, 65), (290, 165, 114), (290, 0, 114)],
+        [(82, 0, 225), (82, 165, 225), (130, 165, 65), (130, 0, 65)],
+        [(240, 0, 272), (240, 165, 272), (82, 165, 225), (82, 0, 225)]], "out"),
+    ("tall_block", "white", [
+        [(423, 330, 247), (265, 330, 296), (314, 330, 456), (472, 330, 406)],
+        [(423, 0, 247), (423, 330, 247), (472, 330, 406), (472, 0, 406)],
+        [(472, 0, 406), (472, 330, 406), (314, 330, 456), (314, 0, 456)],
+        [(314, 0, 456), (314, 330, 456), (265, 330, 296), (265, 0, 296)],
+        [(265, 0, 296), (265, 330, 296), (423, 330, 247), (423, 0, 247)]], "out"),
+    # The light hangs 0.5 mm below the ceiling so the two never share a plane.
+    ("light", "light", [[(343, 548.3, 227), (343, 548.3, 332), (213, 548.3, 332), (213, 548.3, 227)]], (0, -1, 0)),
+]
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def centre(points):
+    return tuple(sum(p[i] for p in points) / len(points) for i in range(3))
+
+
+def oriented(quad, facing, object_centre):
+    """The quad's corners ordered counter-clockwise around the normal it should face."""
+    normal = cross(sub(quad[1], quad[0]), sub(quad[2], quad[0]))
+    qc = centre(quad)
+    if facing == "in":
+        want = sub(BOX_CENTRE, qc)
+    elif facing == "out":
+        want = sub(qc, object_centre)
+    else:
+        want = facing
+    return quad if dot(normal, want) > 0 else list(reversed(quad))
+
+
+def main():
+    blob = bytearray()
+    buffer_views, accessors, meshes, nodes = [], [], [], []
+    material_index = {name: i for i, name in enumerate(MATERIALS)}
+
+    def add_view(data, target):
+        while len(blob) % 4:
+            blob.append(0)
+        buffer_views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
+        blob.extend(data)
+        return len(buffer_views) - 1
+
+    for name, material, quads, facing in SURFACES:
+        corners = [p for q in quads for p in q]
+        object_centre = centre(corners)
+        positions, indices = [], []
+        for quad in quads:
+            quad = oriented(quad, facing, object_centre)
+            base = len(positions)
+            positions.extend(tuple(c * MM for c in p) for p in quad)
+            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
+        pos_view = add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
+        idx_view = add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
+        accessors.append({
+            "bufferView": pos_view, "componentType": 5126, "count": len(positions), "type": "VEC3",
+            "min": [min(p[i] for p in positions) for i in range(3)],
+            "max": [max(p[i] for p in positions) for i in range(3)],
+        })
+        accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        meshes.append({"name": name, "primitives": [{
+            "attributes": {"POSITION": len(accessors) - 2}, "indices": len(accessors) - 1,
+            "material": material_index[material]}]})
+        nodes.append({"name": name, "mesh": len(meshes) - 1})
+
+    # Camera at (278, 273, -800) mm looking down +z: the glTF camera looks down its -Z, so the
+    # node turns half a turn about +Y. Film 25 mm behind a 35 mm lens: yfov = 2 atan(12.5 / 35).
+    nodes.append({"name": "camera", "camera": 0, "translation": [278 * MM, 273 * MM, -800 * MM],
+                  "rotation": [0.0, 1.0, 0.0, 0.0]})
+
+    peak = max(LIGHT_RADIANCE)
+    materials = []
+    for name, colour in MATERIALS.items():
+        m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*colour, 1.0], "metallicFactor": 0.0,
+                                                     "roughnessFactor": 1.0}}
+        if name == "light":
+            m["emissiveFactor"] = [c / peak for c in LIGHT_RADIANCE]
+            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": peak}}
+        materials.append(m)
+
+    gltf = {
+        "asset": {"version": "2.0", "generator": "prism scenes/cornell-box/generate.py"},
+        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "scene": 0,
+        "scenes": [{"name": "cornell-box", "nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+        "cameras": [{"name": "camera", "type": "perspective",
+                     "perspective": {"yfov": 2 * math.atan(12.5 / 35.0), "aspectRatio": 1.0, "znear": 0.01}}],
+        "accessors": accessors,
+        "bufferViews": buffer_views,
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+    }
+    out = Path(__file__).with_name("cornell-box.gltf")
+    out.write_text(json.dumps(gltf, indent=1) + "\n")
+    print(f"wrote {out} ({len(meshes)} meshes, {sum(len(s[2]) * 2 for s in SURFACES)} triangles)")
+
+
+if __name__ == "__main__":
+    main()

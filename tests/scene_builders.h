@@ -1,0 +1,21 @@
+// Scenes built in code for tests: quads, closed boxes, spheres and materials.
+#pragma once
+
+#include "core/scene_desc.h"
+
+namespace prism::test {
+
+// Adds a material and returns its index.
+int add_material(SceneDesc& scene, const Rgb& albedo, const Rgb& emission = Rgb(0.0f), bool double_sided = false);
+
+// Adds a quad (two triangles) with corners c, c+u, c+u+v, c+v as a one-primitive mesh placed by
+// `xf`; its front face is along cross(u, v). Returns the mesh index.
+int add_quad(SceneDesc& scene, const Vec3& c, const Vec3& u, const Vec3& v, int material,
+             const Transform& xf = Transform());
+
+// Adds an axis-aligned box [lo, hi] as one mesh of 12 triangles whose front faces point inward.
+int add_inward_box(SceneDesc& scene, const Vec3& lo, const Vec3& hi, int material);
+
+int add_sphere(SceneDesc& scene, const Vec3& center, float radius, int material);
+
+}  // namespace prism::test

@@ -1,0 +1,195 @@
+// Ray queries: sphere and triangle hits, transforms and instancing, and spawned rays that never re-hit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/frame.h"
+#include "core/pcg32.h"
+#include "core/sampling.h"
+#include "core/scene.h"
+#include "core/spawn.h"
+#include "core/sphere_geometry.h"
+#include "core/transform.h"
+#include "scene_builders.h"
+
+namespace prism {
+namespace {
+
+TEST(SphereIntersection, ExactDistanceAcrossScales) {
+  for (float r : {1e-4f, 1e-2f, 1.0f, 1e3f, 1e5f}) {
+    for (float dist : {3.0f, 1e3f, 1e5f}) {
+      const Vec3 c(0.3f * r, -0.2f * r, dist * r);
+      Ray ray{Vec3(0.3f * r, -0.2f * r, 0), Vec3(0, 0, 1)};
+      const double t = intersect_sphere(c, r, ray);
+      const double expected = double(c.z) - r;
+      EXPECT_NEAR(t, expected, 1e-6 * expected + 1e-7 * r) << "r " << r << " dist " << dist;
+    }
+  }
+}
+
+TEST(SphereIntersection, FromInsideHitsFarSide) {
+  Ray ray{Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  EXPECT_NEAR(intersect_sphere(Vec3(0.5f, 0, 0), 2.0f, ray), 2.5, 1e-6);
+  ray.t_max = 2.0f;
+  EXPECT_LT(intersect_sphere(Vec3(0.5f, 0, 0), 2.0f, ray), 0.0);
+}
+
+TEST(SphereIntersection, GrazingAndMiss) {
+  const Ray miss{Vec3(0, 1.0001f, -5), Vec3(0, 0, 1)};
+  EXPECT_LT(intersect_sphere(Vec3(0, 0, 0), 1.0f, miss), 0.0);
+  const Ray graze{Vec3(0, 0.9999f, -5), Vec3(0, 0, 1)};
+  const double t = intersect_sphere(Vec3(0, 0, 0), 1.0f, graze);
+  EXPECT_NEAR(t, 5.0 - std::sqrt(1.0 - 0.9999 * 0.9999), 1e-5);
+}
+
+TEST(SceneHits, SphereHitHasOutwardNormalAndExactPoint) {
+  SceneDesc desc;
+  const int m = test::add_material(desc, Rgb(0.5f));
+  test::add_sphere(desc, Vec3(1, 2, 3), 0.5f, m);
+  const Scene scene(std::move(desc));
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(1, 2, 10), Vec3(0, 0, -1)}, hit));
+  EXPECT_NEAR(hit.t, 6.5f, 1e-5f);
+  EXPECT_NEAR(hit.p.z, 3.5f, 1e-6f);
+  EXPECT_NEAR(hit.ng.z, 1.0f, 1e-6f);
+  EXPECT_EQ(hit.material, m);
+  EXPECT_EQ(hit.emitter, -1);
+}
+
+TEST(SceneHits, TriangleHitInterpolatesAttributes) {
+  SceneDesc desc;
+  const int m = test::add_material(desc, Rgb(0.5f));
+  test::add_quad(desc, Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 4, 0), m);
+  const Scene scene(std::move(desc));
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(0.5f, 1.0f, 5), Vec3(0, 0, -1)}, hit));
+  EXPECT_NEAR(hit.t, 5.0f, 1e-6f);
+  EXPECT_NEAR(hit.p.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(hit.p.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(hit.uv.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(hit.uv.y, 0.25f, 1e-6f);
+  EXPECT_NEAR(hit.ng.z, 1.0f, 1e-6f);  // cross(u, v) = +z
+  EXPECT_FALSE(scene.intersect(Ray{Vec3(2.5f, 1.0f, 5), Vec3(0, 0, -1)}, hit));
+}
+
+TEST(SceneHits, InstancedMeshIsSharedAndTransformed) {
+  SceneDesc desc;
+  const int m = test::add_material(desc, Rgb(0.5f));
+  const int mesh = test::add_quad(desc, Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), m);
+  // A second placement of the same mesh: moved, rotated a quarter turn about x, scaled by 3.
+  InstanceDesc second;
+  second.mesh = mesh;
+  second.object_to_world = Transform::translate(Vec3(10, 0, 0)) * Transform::rotate_quaternion(std::sin(0.25 * M_PI), 0, 0, std::cos(0.25 * M_PI)) *
+                           Transform::scale(Vec3(3.0f));
+  desc.instances.push_back(second);
+  EXPECT_TRUE(desc.features().instancing);
+  EXPECT_EQ(desc.meshes.size(), 1u);
+  EXPECT_EQ(desc.triangle_count(), 4u);
+  const Scene scene(std::move(desc));
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(0.5f, 0.5f, 5), Vec3(0, 0, -1)}, hit));
+  EXPECT_NEAR(hit.p.z, 0.0f, 1e-6f);
+  // The rotated copy lies in the plane y = 0, spanning x in [7, 13] and z in [-3, 3]; its front
+  // (+z rotated by +90 degrees about x) faces -y.
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(12, 5, 2), Vec3(0, -1, 0)}, hit));
+  EXPECT_NEAR(hit.t, 5.0f, 1e-5f);
+  EXPECT_NEAR(hit.p.x, 12.0f, 1e-5f);
+  EXPECT_NEAR(hit.p.z, 2.0f, 1e-5f);
+  EXPECT_NEAR(hit.ng.y, -1.0f, 1e-5f);
+  EXPECT_NEAR(hit.uv.x, (12.0f - 7.0f) / 6.0f, 1e-5f);
+  EXPECT_FALSE(scene.intersect(Ray{Vec3(13.5f, 5, 2), Vec3(0, -1, 0)}, hit));
+}
+
+TEST(SceneHits, MirroredInstanceKeepsFrontFaceByDeterminant) {
+  // glTF 2.0 §3.7.4: a negative determinant makes clockwise faces front-facing, so the
+  // geometric normal follows the mirrored surface rather than the flipped winding.
+  SceneDesc desc;
+  const int m = test::add_material(desc, Rgb(0.5f));
+  test::add_quad(desc, Vec3(-1, -1, 1), Vec3(2, 0, 0), Vec3(0, 2, 0), m, Transform::scale(Vec3(-1, 1, 1)));
+  const Scene scene(std::move(desc));
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(0.2f, 0.1f, 5), Vec3(0, 0, -1)}, hit));
+  EXPECT_NEAR(hit.ng.z, 1.0f, 1e-6f);
+}
+
+TEST(SceneHits, EmissiveInstancesAreEmitters) {
+  SceneDesc desc;
+  const int light = test::add_material(desc, Rgb(0.0f), Rgb(1.0f));
+  const int mesh = test::add_quad(desc, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), light);
+  desc.instances.push_back({"copy", mesh, Transform::translate(Vec3(5, 0, 0))});
+  const Scene scene(std::move(desc));
+  EXPECT_EQ(scene.emitters().size(), 4u);
+  SurfaceHit a, b;
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(0.5f, 0.2f, 1), Vec3(0, 0, -1)}, a));
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(5.5f, 0.2f, 1), Vec3(0, 0, -1)}, b));
+  EXPECT_GE(a.emitter, 0);
+  EXPECT_GE(b.emitter, 0);
+  EXPECT_NE(a.emitter, b.emitter);
+  EXPECT_FLOAT_EQ(scene.emitters().pick_probability(a.emitter), 0.25f);
+}
+
+TEST(SceneValidation, RejectsOutOfRangeIndices) {
+  SceneDesc desc;
+  desc.source = "test";
+  test::add_quad(desc, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), -1);
+  desc.meshes[0].primitives[0].indices[2] = 99;
+  EXPECT_THROW(Scene{std::move(desc)}, std::invalid_argument);
+}
+
+TEST(Transform, ComposeAndInvert) {
+  const Transform a = Transform::translate(Vec3(1, 2, 3)) * Transform::rotate_quaternion(0.1, 0.7, -0.2, 0.6) *
+                      Transform::scale(Vec3(2, 3, 0.5f));
+  const Vec3 p(0.3f, -1.2f, 4.0f);
+  const Vec3 q = a.inverse().point(a.point(p));
+  EXPECT_NEAR(q.x, p.x, 1e-5f);
+  EXPECT_NEAR(q.y, p.y, 1e-5f);
+  EXPECT_NEAR(q.z, p.z, 1e-5f);
+  // Normals stay perpendicular to transformed tangents.
+  const Vec3 t(1, 0, 0), n(0, 0, 1);
+  EXPECT_NEAR(dot(a.vector(t), a.normal(n)), 0.0f, 1e-5f);
+  EXPECT_FALSE(Transform::scale(Vec3(1, 0, 1)).is_invertible());
+  EXPECT_TRUE(Transform::scale(Vec3(-1, 1, 1)).flips_handedness());
+}
+
+// Rays spawned off a surface toward its front never hit that surface again, and rays spawned
+// into a closed sphere reach its far side, at every scale.
+TEST(SpawnedRays, NeverReHitTheirOwnSurface) {
+  Pcg32 rng(11, 12);
+  for (float scale : {1e-4f, 1e-2f, 1.0f, 1e2f, 1e4f}) {
+    for (float offset : {0.0f, 1e3f}) {
+      SceneDesc desc;
+      const int m = test::add_material(desc, Rgb(0.5f));
+      const Vec3 origin = Vec3(offset * scale, -offset * scale, 0.5f * offset * scale);
+      // A sliver triangle pair and a sphere, both around `origin`.
+      test::add_quad(desc, origin + Vec3(-1, -1e-3f, 0) * scale, Vec3(2, 0, 0) * scale, Vec3(0.5f, 2e-3f, 0.3f) * scale, m);
+      test::add_sphere(desc, origin + Vec3(0, 0, 5) * scale, 1.0f * scale, m);
+      const Scene scene(std::move(desc));
+      int failures = 0;
+      for (int i = 0; i < 2000; ++i) {
+        // Find a point on each surface by casting at it, then leave in a random direction.
+        const bool sphere = i % 2;
+        const Vec3 target = sphere ? origin + Vec3(0, 0, 5) * scale : origin + Vec3(rng.next_float() - 0.5f, 0, 0) * scale;
+        const Vec3 from = target + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * (3.0f * scale);
+        SurfaceHit hit;
+        if (!scene.intersect(Ray{from, target - from}, hit)) continue;
+        const Vec3 out_dir = face_forward(hit.ng, from - hit.p);
+        Vec3 w = sample_cosine_hemisphere({rng.next_float(), rng.next_float()});
+        const Frame f = Frame::from_normal(out_dir);
+        w = f.to_world(w);
+        SurfaceHit again;
+        const Ray leave = spawn_ray(hit.p, hit.p_error, hit.ng, w);
+        if (scene.intersect(leave, again) && again.t < 1e-3f * scale) ++failures;
+        if (sphere && dot(out_dir, hit.ng) > 0) {
+          // Into the sphere: must reach the far side, not the entry point.
+          const Ray into = spawn_ray(hit.p, hit.p_error, hit.ng, -w);
+          ASSERT_TRUE(scene.intersect(into, again)) << "scale " << scale;
+          if (again.t < 1e-3f * scale) ++failures;
+        }
+      }
+      EXPECT_EQ(failures, 0) << "scale " << scale << " offset " << offset;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,125 @@
+// Job files: settings, material overrides, analytic spheres, and errors that name the key.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "gltf_writer.h"
+#include "io/errors.h"
+#include "io/job_file.h"
+#include "io/scene_source.h"
+
+namespace prism {
+namespace {
+
+JobFile parse(const std::string& text, Diagnostics& diag) { return parse_job_json(text, "/jobs/job.json", diag); }
+
+TEST(JobFile, ReadsSettingsAndResolvesPathsAgainstItsFolder) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({"scene": "scenes/box.gltf", "output": "/abs/out.exr", "resolution": [320, 200],
+    "spp": 16, "max_depth": 3, "seed": 42, "camera": 1, "integrator": "path"})", diag);
+  EXPECT_EQ(*job.scene, "/jobs/scenes/box.gltf");
+  EXPECT_EQ(*job.output, "/abs/out.exr");
+  EXPECT_EQ(*job.width, 320);
+  EXPECT_EQ(*job.height, 200);
+  EXPECT_EQ(*job.spp, 16);
+  EXPECT_EQ(*job.max_depth, 3);
+  EXPECT_EQ(*job.seed, 42u);
+  EXPECT_EQ(*job.camera, "1");
+  EXPECT_TRUE(diag.empty());
+}
+
+TEST(JobFile, UnknownKeysWarn) {
+  Diagnostics diag;
+  parse(R"({"spp": 4, "sppp": 5, "materials": {"m": {"colour": [1,0,0]}}})", diag);
+  EXPECT_TRUE(diag.contains("$.sppp: unknown key"));
+  EXPECT_TRUE(diag.contains("$.materials.m.colour: unknown key"));
+}
+
+TEST(JobFile, TypeErrorsNameTheKeyAndType) {
+  struct Case {
+    const char* json;
+    const char* where;
+    const char* why;
+  };
+  const Case cases[] = {
+      {R"({"spp": "many"})", "$.spp", "expected an integer"},
+      {R"({"spp": 0})", "$.spp", "between 1"},
+      {R"({"resolution": [10]})", "$.resolution", "[width, height]"},
+      {R"({"seed": -1})", "$.seed", "non-negative"},
+      {R"({"spheres": [{"center": [0, 0], "radius": 1}]})", "$.spheres[0].center", "3 numbers"},
+      {R"({"spheres": [{"center": [0, 0, 0], "radius": -1}]})", "$.spheres[0].radius", "between 0"},
+      {R"({"spheres": [{"center": [0, 0, 0]}]})", "$.spheres[0]", "radius"},
+      {R"({"materials": {"m": {"base_color": [2, 0, 0]}}})", "$.materials.m.base_color[0]", "between 0 and 1"},
+      {R"({"materials": {"m": {"double_sided": 1}}})", "$.materials.m.double_sided", "true or false"},
+      {R"([1, 2])", "$", "expected an object"},
+      {R"({"spp": )", "", "invalid JSON"},
+  };
+  for (const Case& c : cases) {
+    Diagnostics diag;
+    try {
+      parse(c.json, diag);
+      ADD_FAILURE() << c.json << ": expected an InputError";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("/jobs/job.json"), std::string::npos) << what;
+      EXPECT_NE(what.find(c.where), std::string::npos) << what;
+      EXPECT_NE(what.find(c.why), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(JobFile, OverridesMaterialsAndAddsSpheres) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({
+    "materials": {"white": {"base_color": [0.2, 0.3, 0.4]}, "lamp": {"emissive": [1, 1, 1], "emissive_strength": 5}},
+    "spheres": [{"name": "ball", "center": [0, 1, 0], "radius": 0.5, "material": "lamp"},
+                {"center": [2, 1, 0], "radius": 0.25, "material": {"base_color": [1, 0, 0]}},
+                {"center": [4, 1, 0], "radius": 0.25}]})", diag);
+  SceneDesc scene;
+  MaterialDesc white;
+  white.name = "white";
+  white.emissive = Rgb(0.5f);
+  scene.materials.push_back(white);
+  apply_job_edits(job, scene);
+  ASSERT_EQ(scene.materials.size(), 3u);
+  EXPECT_FLOAT_EQ(scene.materials[0].base_color.y, 0.3f);
+  EXPECT_FLOAT_EQ(scene.materials[0].emissive.x, 0.5f);  // fields the job leaves alone stay
+  ASSERT_EQ(scene.spheres.size(), 3u);
+  EXPECT_EQ(scene.spheres[0].name, "ball");
+  EXPECT_EQ(scene.materials[scene.spheres[0].material].name, "lamp");
+  EXPECT_FLOAT_EQ(scene.materials[scene.spheres[0].material].emissive_strength, 5.0f);
+  EXPECT_FLOAT_EQ(scene.materials[scene.spheres[1].material].base_color.x, 1.0f);
+  EXPECT_EQ(scene.spheres[2].material, -1);
+  EXPECT_TRUE(scene.features().spheres);
+  EXPECT_TRUE(scene.features().emitters);
+}
+
+TEST(JobFile, SphereWithUnknownMaterialIsAnError) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({"spheres": [{"center": [0, 0, 0], "radius": 1, "material": "nope"}]})", diag);
+  SceneDesc scene;
+  EXPECT_THROW(apply_job_edits(job, scene), InputError);
+}
+
+TEST(SceneSource, LoadsJobWithItsGltfAndRejectsUnknownTypes) {
+  const std::string dir = test::make_temp_dir("job");
+  test::GltfWriter w;
+  const std::vector<float> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  w.doc()["materials"] = nlohmann::json::array({{{"name", "floor"}}});
+  w.set_scene_nodes({w.add_node({{"mesh", w.add_mesh(w.add_positions(tri), -1, 0)}})});
+  w.write(dir, "scene");
+  std::ofstream(dir + "/job.json") << R"({"scene": "scene.gltf", "spp": 3,
+      "materials": {"floor": {"base_color": [0, 1, 0]}}, "spheres": [{"center": [0, 0, 1], "radius": 0.5}]})";
+  Diagnostics diag;
+  const LoadedScene loaded = load_scene_source(dir + "/job.json", diag);
+  ASSERT_TRUE(loaded.job.has_value());
+  EXPECT_EQ(*loaded.job->spp, 3);
+  EXPECT_EQ(loaded.scene.spheres.size(), 1u);
+  EXPECT_FLOAT_EQ(loaded.scene.materials[0].base_color.y, 1.0f);
+  EXPECT_EQ(loaded.scene.triangle_count(), 1u);
+  EXPECT_THROW(load_scene_source(dir + "/scene.obj", diag), InputError);
+  EXPECT_THROW(load_scene_source(dir + "/missing.json", diag), InputError);
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,258 @@
+// Random numbers and warping functions: reference values, determinism, chi-square tests against pdfs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/constants.h"
+#include "core/distribution_1d.h"
+#include "core/emitters.h"
+#include "core/frame.h"
+#include "core/pcg32.h"
+#include "core/sampler.h"
+#include "core/sampling.h"
+#include "scene_builders.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+// Chi-square critical value at significance 1e-5 (one-sided z = 4.265) for `dof` degrees of
+// freedom, by the Wilson-Hilferty approximation.
+double chi2_critical(int dof) {
+  const double z = 4.265, k = dof;
+  const double t = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+  return k * t * t * t;
+}
+
+double chi2(const std::vector<double>& observed, const std::vector<double>& expected) {
+  double x = 0;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    const double d = observed[i] - expected[i];
+    x += d * d / expected[i];
+  }
+  return x;
+}
+
+TEST(Pcg32, MatchesReferenceSequence) {
+  // pcg32_srandom_r(&rng, 42, 54) from the PCG reference implementation (pcg32-demo).
+  Pcg32 rng(54u, 42u);
+  const uint32_t expected[] = {0xa15c02b7, 0x7b47f409, 0xba1d3330, 0x83d2f293, 0xbfa4784b, 0xcbed606e};
+  for (uint32_t e : expected) EXPECT_EQ(rng.next_u32(), e);
+}
+
+TEST(Pcg32, AdvanceEqualsStepping) {
+  Pcg32 a(7, 11), b(7, 11);
+  for (int i = 0; i < 1000; ++i) a.next_u32();
+  b.advance(1000);
+  EXPECT_EQ(a.next_u32(), b.next_u32());
+}
+
+TEST(Pcg32, FloatsInUnitInterval) {
+  Pcg32 rng(3, 5);
+  for (int i = 0; i < 100000; ++i) {
+    const float u = rng.next_float();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+  }
+}
+
+TEST(IndependentSampler, PureFunctionOfPixelSampleAndDimension) {
+  IndependentSampler a(9), b(9), c(10);
+  a.start_pixel_sample(3, 4, 17);
+  const float a0 = a.next_1d(), a1 = a.next_1d();
+  // b visits other pixels first: the values must not depend on history.
+  b.start_pixel_sample(5, 5, 2);
+  b.next_1d();
+  b.start_pixel_sample(3, 4, 17);
+  EXPECT_EQ(b.next_1d(), a0);
+  EXPECT_EQ(b.next_1d(), a1);
+  c.start_pixel_sample(3, 4, 17);
+  EXPECT_NE(c.next_1d(), a0);  // another seed, another stream
+  a.start_pixel_sample(3, 4, 18);
+  EXPECT_NE(a.next_1d(), a0);
+  a.start_pixel_sample(4, 3, 17);
+  EXPECT_NE(a.next_1d(), a0);
+}
+
+TEST(IndependentSampler, UniformAcrossPixels) {
+  // The first dimension over many pixels (one sample each) must be uniform.
+  IndependentSampler s(0);
+  const int bins = 64, n = 64 * 2000;
+  std::vector<double> counts(bins, 0), expected(bins, double(n) / bins);
+  for (int i = 0; i < n; ++i) {
+    s.start_pixel_sample(i % 512, i / 512, 0);
+    counts[static_cast<int>(s.next_1d() * bins)] += 1;
+  }
+  EXPECT_LT(chi2(counts, expected), chi2_critical(bins - 1));
+}
+
+TEST(Sampling, CosineHemisphereMatchesPdf) {
+  // Under cos(theta)/pi, cos^2(theta) and phi are independent and uniform.
+  Pcg32 rng(1, 2);
+  const int nb = 16, n = 200000;
+  std::vector<double> counts(nb * nb, 0), expected(nb * nb, double(n) / (nb * nb));
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = sample_cosine_hemisphere({rng.next_float(), rng.next_float()});
+    ASSERT_NEAR(length(w), 1.0f, 1e-5f);
+    ASSERT_GE(w.z, 0.0f);
+    const double phi = std::atan2(w.y, w.x) + kPi;
+    const int a = std::min(nb - 1, static_cast<int>(w.z * w.z * nb));
+    const int b = std::min(nb - 1, static_cast<int>(phi / kTwoPi * nb));
+    counts[a * nb + b] += 1;
+  }
+  EXPECT_LT(chi2(counts, expected), chi2_critical(nb * nb - 1));
+}
+
+TEST(Sampling, UniformConeMatchesPdf) {
+  for (float omc_max : {1e-6f, 0.01f, 0.5f, 2.0f}) {  // from a tiny cone to the whole sphere
+    Pcg32 rng(5, 6);
+    const int nb = 16, n = 100000;
+    std::vector<double> counts(nb * nb, 0), expected(nb * nb, double(n) / (nb * nb));
+    for (int i = 0; i < n; ++i) {
+      const Vec3 w = sample_uniform_cone({rng.next_float(), rng.next_float()}, omc_max);
+      ASSERT_NEAR(length(w), 1.0f, 1e-5f);
+      // 1 - cos(theta), computed stably, is uniform on [0, omc_max].
+      const double omc = (w.x * w.x + w.y * w.y) / (1.0 + w.z);
+      const int a = std::clamp(static_cast<int>(omc / omc_max * nb), 0, nb - 1);
+      const int b = std::min(nb - 1, static_cast<int>((std::atan2(w.y, w.x) + kPi) / kTwoPi * nb));
+      counts[a * nb + b] += 1;
+    }
+    EXPECT_LT(chi2(counts, expected), chi2_critical(nb * nb - 1)) << "1 - cos_max = " << omc_max;
+  }
+}
+
+TEST(Sampling, UniformTriangleMatchesArea) {
+  // The right triangle (0,0),(1,0),(0,1) cut into k^2 congruent sub-triangles of equal area.
+  Pcg32 rng(8, 9);
+  const int k = 12, n = 200000;
+  std::vector<double> counts(k * k, 0), expected(k * k, double(n) / (k * k));
+  for (int s = 0; s < n; ++s) {
+    const Vec2 b = sample_uniform_triangle({rng.next_float(), rng.next_float()});
+    const float x = b.y, y = 1.0f - b.x - b.y;  // point b0*(0,0) + b1*(1,0) + b2*(0,1)
+    ASSERT_GE(x, 0.0f);
+    ASSERT_GE(y, -1e-6f);
+    const int i = std::min(k - 1, static_cast<int>(x * k)), j = std::min(k - 1, static_cast<int>(y * k));
+    const bool upper = (x * k - i) + (y * k - j) >= 1.0f;
+    // Cells with i + j < k - 1 hold two sub-triangles; diagonal cells only the lower one.
+    int index = 0;
+    for (int r = 0; r < j; ++r) index += 2 * (k - r) - 1;
+    index += 2 * i + ((upper && i + j < k - 1) ? 1 : 0);
+    counts[std::min(index, k * k - 1)] += 1;
+  }
+  EXPECT_LT(chi2(counts, expected), chi2_critical(k * k - 1));
+}
+
+TEST(Distribution1D, SamplesInProportionToWeights) {
+  const std::vector<double> w = {1, 0, 3, 0, 6};
+  Distribution1D d(w);
+  ASSERT_EQ(d.size(), 5u);
+  EXPECT_FLOAT_EQ(d.pmf(0), 0.1f);
+  EXPECT_FLOAT_EQ(d.pmf(1), 0.0f);
+  EXPECT_FLOAT_EQ(d.pmf(4), 0.6f);
+  Pcg32 rng(1, 1);
+  std::vector<double> counts(5, 0);
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    float remapped = -1;
+    const size_t k = d.sample(rng.next_float(), &remapped);
+    ASSERT_GT(d.pmf(k), 0.0f);
+    ASSERT_GE(remapped, 0.0f);
+    ASSERT_LT(remapped, 1.0f);
+    counts[k] += 1;
+  }
+  const std::vector<double> observed = {counts[0], counts[2], counts[4]};
+  const std::vector<double> expected = {0.1 * n, 0.3 * n, 0.6 * n};
+  EXPECT_LT(chi2(observed, expected), chi2_critical(2));
+}
+
+TEST(Distribution1D, AllZeroIsEmpty) {
+  Distribution1D d(std::vector<double>{0, 0, -1, std::nan("")});
+  EXPECT_EQ(d.size(), 0u);
+}
+
+TEST(Frame, IsOrthonormal) {
+  Pcg32 rng(2, 3);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 n = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    const Frame f = Frame::from_normal(n);
+    ASSERT_NEAR(dot(f.s, f.t), 0.0f, 1e-5f);
+    ASSERT_NEAR(dot(f.s, f.n), 0.0f, 1e-5f);
+    ASSERT_NEAR(length(f.s), 1.0f, 1e-5f);
+    ASSERT_NEAR(length(f.t), 1.0f, 1e-5f);
+    const Vec3 v(0.3f, -0.2f, 0.9f);
+    const Vec3 back = f.to_world(f.to_local(v));
+    ASSERT_NEAR(back.x, v.x, 1e-5f);
+    ASSERT_NEAR(back.z, v.z, 1e-5f);
+  }
+}
+
+// Solid angle of a triangle seen from the origin (Van Oosterom and Strackee, IEEE TBME 1983).
+double triangle_solid_angle(Vec3 a, Vec3 b, Vec3 c) {
+  const double la = length(a), lb = length(b), lc = length(c);
+  const double num = std::abs(dot(a, cross(b, c)));
+  const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+  return 2.0 * std::atan2(num, den);
+}
+
+TEST(Emitters, TrianglePdfIntegratesToSolidAngle) {
+  // E[1 / pdf] over emitter samples is the solid angle the emitter subtends.
+  SceneDesc scene;
+  const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f));
+  test::add_quad(scene, Vec3(-0.5f, -0.25f, 1.0f), Vec3(1.0f, 0, 0), Vec3(0, 0.5f, 0), light);
+  Emitters emitters(scene);
+  ASSERT_EQ(emitters.size(), 2u);
+  const Vec3 ref(0.2f, 0.1f, 0.0f);
+  Pcg32 rng(4, 4);
+  test::RunningStats stats;
+  for (int i = 0; i < 200000; ++i) {
+    const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+    ASSERT_GT(s.pdf, 0.0f);
+    ASSERT_NEAR(emitters.pdf(s.emitter, ref, s.p, s.n), s.pdf, 1e-4f * s.pdf);
+    stats.add(1.0 / s.pdf);
+  }
+  const Vec3 c(-0.5f, -0.25f, 1.0f), u(1.0f, 0, 0), v(0, 0.5f, 0);
+  const double expected = triangle_solid_angle(c - ref, c + u - ref, c + u + v - ref) +
+                          triangle_solid_angle(c - ref, c + u + v - ref, c + v - ref);
+  EXPECT_NEAR(stats.mean(), expected, test::kSigmas * stats.standard_error() + 1e-6);
+}
+
+TEST(Emitters, SphereConeSamplingIsUniformInSolidAngle) {
+  for (float distance : {1.5f, 10.0f, 1e4f}) {
+    SceneDesc scene;
+    const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f));
+    test::add_sphere(scene, Vec3(0, 0, distance), 1.0f, light);
+    Emitters emitters(scene);
+    const Vec3 ref(0, 0, 0);
+    const double sin2 = 1.0 / (double(distance) * distance);
+    const double omc_max = sin2 / (1.0 + std::sqrt(1.0 - sin2));
+    Pcg32 rng(6, 7);
+    const int nb = 10, n = 100000;
+    std::vector<double> counts(nb * nb, 0), expected(nb * nb, double(n) / (nb * nb));
+    for (int i = 0; i < n; ++i) {
+      const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+      ASSERT_NEAR(s.pdf, 1.0 / (2.0 * kPi * omc_max), 1e-3 / (2.0 * kPi * omc_max));
+      // The point lies on the sphere, on the side that faces ref.
+      ASSERT_NEAR(length(s.p - Vec3(0, 0, distance)), 1.0f, 1e-5f * distance);
+      ASSERT_LE(dot(s.n, s.p - ref), 1e-3f * distance);
+      const Vec3 w = normalize(s.p - ref);
+      const double omc = (double(w.x) * w.x + double(w.y) * w.y) / (1.0 + w.z);
+      const int a = std::clamp(static_cast<int>(omc / omc_max * nb), 0, nb - 1);
+      const int b = std::min(nb - 1, static_cast<int>((std::atan2(w.y, w.x) + kPi) / kTwoPi * nb));
+      counts[a * nb + b] += 1;
+    }
+    if (distance < 100.0f) {  // beyond that, float directions cannot resolve the cone's bins
+      EXPECT_LT(chi2(counts, expected), chi2_critical(nb * nb - 1)) << "distance " << distance;
+    }
+  }
+}
+
+TEST(Sampling, PowerHeuristic) {
+  EXPECT_FLOAT_EQ(power_heuristic(1, 1), 0.5f);
+  EXPECT_FLOAT_EQ(power_heuristic(3, 1), 0.9f);
+  EXPECT_FLOAT_EQ(power_heuristic(0, 0), 0.0f);
+  EXPECT_FLOAT_EQ(power_heuristic(std::numeric_limits<float>::infinity(), 1), 1.0f);
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,70 @@
+// Textures: sRGB decoding from a glTF image, bilinear lookup and the glTF wrap modes.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "gltf_writer.h"
+#include "io/gltf_loader.h"
+#include "io/image_decode.h"
+#include "materials/material_eval.h"
+#include "materials/texture_lookup.h"
+
+namespace prism {
+namespace {
+
+TEST(WrapTexel, GltfWrapModes) {
+  EXPECT_EQ(wrap_texel(-1, 4, WrapMode::Repeat), 3);
+  EXPECT_EQ(wrap_texel(5, 4, WrapMode::Repeat), 1);
+  EXPECT_EQ(wrap_texel(-3, 4, WrapMode::ClampToEdge), 0);
+  EXPECT_EQ(wrap_texel(9, 4, WrapMode::ClampToEdge), 3);
+  EXPECT_EQ(wrap_texel(4, 4, WrapMode::MirroredRepeat), 3);
+  EXPECT_EQ(wrap_texel(-1, 4, WrapMode::MirroredRepeat), 0);
+  EXPECT_EQ(wrap_texel(8, 4, WrapMode::MirroredRepeat), 0);
+}
+
+TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {
+  const std::string dir = test::make_temp_dir("tex");
+  // A 2x1 PNG: left texel sRGB (255, 128, 0), right texel (0, 64, 255).
+  const unsigned char pixels[] = {255, 128, 0, 0, 64, 255};
+  {
+    auto out = OIIO::ImageOutput::create(dir + "/t.png");
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(dir + "/t.png", OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+    out->close();
+  }
+  test::GltfWriter w;
+  w.doc()["images"] = nlohmann::json::array({{{"uri", "t.png"}}});
+  w.doc()["samplers"] = nlohmann::json::array({{{"magFilter", 9728}, {"wrapS", 33071}}});  // NEAREST, CLAMP
+  w.doc()["textures"] = nlohmann::json::array({{{"source", 0}}, {{"source", 0}, {"sampler", 0}}});
+  w.doc()["materials"] = nlohmann::json::array(
+      {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {1, 1, 0.5, 1}}}}},
+       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}}});
+  const std::vector<float> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const int pos = w.add_positions(tri);
+  w.set_scene_nodes({w.add_node({{"mesh", w.add_mesh(pos, -1, 0)}}), w.add_node({{"mesh", w.add_mesh(pos, -1, 1)}})});
+  Diagnostics diag;
+  const SceneDesc s = load_gltf(w.write(dir, "scene"), diag);
+  ASSERT_EQ(s.images.size(), 1u);  // one image, decoded once for its colour space
+  ASSERT_EQ(s.textures.size(), 2u);
+  EXPECT_TRUE(s.features().textures);
+  EXPECT_NEAR(s.images[0].texels[1], srgb_to_linear(128.0f / 255.0f), 1e-6f);
+
+  // At a texel centre the bilinear value is the texel; the factor multiplies it.
+  const Rgb left = base_color(s, s.materials[0], {0.25f, 0.5f});
+  EXPECT_NEAR(left.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(left.y, srgb_to_linear(128.0f / 255.0f), 1e-6f);
+  // Halfway between the two texel centres: the average of both (repeat wrap).
+  const Rgb mid = base_color(s, s.materials[0], {0.5f, 0.5f});
+  EXPECT_NEAR(mid.z, 0.5f * 0.5f * 1.0f, 1e-6f);
+  // u = 0 lies between the last texel (wrapped) and the first.
+  const Rgb edge = base_color(s, s.materials[0], {0.0f, 0.5f});
+  EXPECT_NEAR(edge.x, 0.5f, 1e-6f);
+  // Nearest filtering with clamping: far outside on the right stays the right texel.
+  const Rgb clamped = base_color(s, s.materials[1], {7.0f, 0.5f});
+  EXPECT_NEAR(clamped.z, 1.0f, 1e-6f);
+  EXPECT_NEAR(clamped.x, 0.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace prism

@@ -21,19 +21,19 @@ int main(int argc, char** argv) {
       ->required();
   cmd->add_option("-o,--output", render.output,
                   "Output EXR path (default: the job's \"output\", else SCENE's name with .exr in the current folder)");
-  cmd->add_option("--spp", render.spp, "Samples per pixel (default 64, or the job's \"spp\")")->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", render.settings.spp, "Samples per pixel (default 64, or the job's \"spp\")")->check(CLI::PositiveNumber);
   cmd->add_option("--res", render.resolution,
                   "Image size WIDTHxHEIGHT, e.g. 1280x720 (default: 512 high, width from the camera's aspect ratio)");
-  cmd->add_option("--camera", render.camera,
+  cmd->add_option("--camera", render.settings.camera,
                   "Camera by name (the camera's or its node's) or by index in node order (default: the first; with no "
                   "cameras, one that frames the scene)");
-  cmd->add_option("--max-depth", render.max_depth,
+  cmd->add_option("--max-depth", render.settings.max_depth,
                   "Maximum bounces; 0 renders only emitters seen directly (default 8)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--seed", render.seed, "Random seed; the same seed gives the same image bits (default 0)");
-  cmd->add_option("--threads", render.threads, "Worker threads; 0 = all cores (default 0). The image does not depend on it")
+  cmd->add_option("--seed", render.settings.seed, "Random seed; the same seed gives the same image bits (default 0)");
+  cmd->add_option("--threads", render.settings.threads, "Worker threads; 0 = all cores (default 0). The image does not depend on it")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--integrator", render.integrator, "Integrator: path (default)");
+  cmd->add_option("--integrator", render.settings.integrator, "Integrator: path (default)");
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 

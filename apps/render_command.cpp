@@ -39,22 +39,15 @@ void parse_resolution(const std::string& text, int& width, int& height) {
 // Defaults, then the job file, then the command line.
 RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobFile>& job) {
   RenderSettings s;
-  if (job) {
-    if (job->width) s.width = *job->width;
-    if (job->height) s.height = *job->height;
-    if (job->spp) s.spp = *job->spp;
-    if (job->max_depth) s.max_depth = *job->max_depth;
-    if (job->seed) s.seed = *job->seed;
-    if (job->camera) s.camera = *job->camera;
-    if (job->integrator) s.integrator = *job->integrator;
+  if (job) job->settings.apply_to(s);
+  RenderSettingsOverride cli = o.settings;
+  if (o.resolution) {
+    int w = 0, h = 0;
+    parse_resolution(*o.resolution, w, h);
+    cli.width = w;
+    cli.height = h;
   }
-  if (o.resolution) parse_resolution(*o.resolution, s.width, s.height);
-  if (o.spp) s.spp = *o.spp;
-  if (o.max_depth) s.max_depth = *o.max_depth;
-  if (o.seed) s.seed = *o.seed;
-  if (o.camera) s.camera = *o.camera;
-  if (o.integrator) s.integrator = *o.integrator;
-  if (o.threads) s.threads = *o.threads;
+  cli.apply_to(s);
   if (s.spp < 1) throw UsageError("--spp must be at least 1");
   if (s.max_depth < 0) throw UsageError("--max-depth must be at least 0");
   if (s.threads < 0) throw UsageError("--threads must be at least 0 (0 = all cores)");

@@ -5,14 +5,16 @@
 #include <optional>
 #include <string>
 
+#include "core/render_settings.h"
+
 namespace prism {
 
 // Command-line values; unset ones fall back to the job file, then to defaults.
 struct RenderOptions {
   std::string scene;
-  std::optional<std::string> output, preview, camera, integrator, resolution;
-  std::optional<int> spp, max_depth, threads;
-  std::optional<uint64_t> seed;
+  std::optional<std::string> output, preview;
+  std::optional<std::string> resolution;  // "WxH", parsed into settings
+  RenderSettingsOverride settings;
   bool quiet = false;
 };
 

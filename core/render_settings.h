@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace prism {
@@ -16,6 +17,24 @@ struct RenderSettings {
   int threads = 0;             // 0 = all hardware threads
   std::string integrator = "path";
   std::string camera;          // name or index; "" = the first in node order
+};
+
+// Settings given by a job file or on the command line; unset fields leave the settings alone.
+struct RenderSettingsOverride {
+  std::optional<int> width, height, spp, max_depth, threads;
+  std::optional<uint64_t> seed;
+  std::optional<std::string> camera, integrator;
+
+  void apply_to(RenderSettings& s) const {
+    if (width) s.width = *width;
+    if (height) s.height = *height;
+    if (spp) s.spp = *spp;
+    if (max_depth) s.max_depth = *max_depth;
+    if (threads) s.threads = *threads;
+    if (seed) s.seed = *seed;
+    if (camera) s.camera = *camera;
+    if (integrator) s.integrator = *integrator;
+  }
 };
 
 }  // namespace prism

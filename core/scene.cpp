@@ -51,48 +51,89 @@ void validate_scene_desc(const SceneDesc& desc) {
         fail("material '" + m.name + "': texture index out of range");
 }
 
+void Scene::bake_single_use_meshes() {
+  std::vector<int> uses(desc_.meshes.size(), 0);
+  for (const InstanceDesc& inst : desc_.instances) ++uses[inst.mesh];
+  for (InstanceDesc& inst : desc_.instances) {
+    if (uses[inst.mesh] != 1 || inst.object_to_world.is_identity()) continue;
+    const Transform& xf = inst.object_to_world;
+    for (PrimitiveDesc& prim : desc_.meshes[inst.mesh].primitives) {
+      for (Vec3& p : prim.positions) p = xf.point(p);
+      for (Vec3& n : prim.normals) n = xf.normal(n);
+      // glTF 2.0 §3.7.4: under a negative determinant the front face is clockwise; swapping two
+      // corners keeps "front = counter-clockwise" true in world space.
+      if (xf.flips_handedness())
+        for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) std::swap(prim.indices[t + 1], prim.indices[t + 2]);
+    }
+    inst.object_to_world = Transform();
+  }
+}
+
+namespace {
+
+// Embree triangle geometry over a primitive's own arrays (no copy).
+RTCGeometry triangle_geometry(RTCDevice device, PrimitiveDesc& prim) {
+  // Embree loads vertices 16 bytes at a time: make room past the last float3.
+  prim.positions.reserve(prim.positions.size() + 1);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, prim.positions.data(), 0,
+                             sizeof(Vec3), prim.positions.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, prim.indices.data(), 0,
+                             3 * sizeof(uint32_t), prim.triangle_count());
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
+}  // namespace
+
 Scene::Scene(SceneDesc desc) : desc_(std::move(desc)) {
   const auto start = std::chrono::steady_clock::now();
   validate_scene_desc(desc_);
   features_ = desc_.features();
+  bake_single_use_meshes();
   RTCDevice device = embree_device();
 
-  mesh_scenes_.resize(desc_.meshes.size(), nullptr);
-  for (size_t m = 0; m < desc_.meshes.size(); ++m) {
-    RTCScene mesh_scene = rtcNewScene(device);
-    mesh_scenes_[m] = mesh_scene;
-    auto& prims = desc_.meshes[m].primitives;
-    for (size_t p = 0; p < prims.size(); ++p) {
-      PrimitiveDesc& prim = prims[p];
-      if (prim.triangle_count() == 0) continue;
-      // Embree loads vertices 16 bytes at a time: make room past the last float3.
-      prim.positions.reserve(prim.positions.size() + 1);
-      RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, prim.positions.data(), 0,
-                                 sizeof(Vec3), prim.positions.size());
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, prim.indices.data(), 0,
-                                 3 * sizeof(uint32_t), prim.triangle_count());
-      rtcCommitGeometry(geom);
-      rtcAttachGeometryByID(mesh_scene, geom, static_cast<unsigned>(p));
-      rtcReleaseGeometry(geom);
-    }
-    rtcCommitScene(mesh_scene);
-  }
-
+  std::vector<int> uses(desc_.meshes.size(), 0);
+  for (const InstanceDesc& inst : desc_.instances) ++uses[inst.mesh];
   top_ = rtcNewScene(device);
+  auto attach_top = [&](RTCGeometry geom, TopGeometry ref) {
+    rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(top_geometries_.size()));
+    rtcReleaseGeometry(geom);
+    top_geometries_.push_back(ref);
+  };
+
+  mesh_scenes_.assign(desc_.meshes.size(), nullptr);
   for (size_t i = 0; i < desc_.instances.size(); ++i) {
     const InstanceDesc& inst = desc_.instances[i];
+    auto& prims = desc_.meshes[inst.mesh].primitives;
+    if (uses[inst.mesh] == 1) {
+      for (size_t p = 0; p < prims.size(); ++p)
+        if (prims[p].triangle_count() > 0)
+          attach_top(triangle_geometry(device, prims[p]), {static_cast<int>(i), static_cast<int>(p)});
+      continue;
+    }
+    RTCScene& mesh_scene = mesh_scenes_[inst.mesh];
+    if (!mesh_scene) {
+      mesh_scene = rtcNewScene(device);
+      for (size_t p = 0; p < prims.size(); ++p) {
+        if (prims[p].triangle_count() == 0) continue;
+        RTCGeometry geom = triangle_geometry(device, prims[p]);
+        rtcAttachGeometryByID(mesh_scene, geom, static_cast<unsigned>(p));  // geomID = primitive
+        rtcReleaseGeometry(geom);
+      }
+      rtcCommitScene(mesh_scene);
+    }
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(geom, mesh_scenes_[inst.mesh]);
+    rtcSetGeometryInstancedScene(geom, mesh_scene);
     const std::array<float, 12> m = inst.object_to_world.matrix_float();
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
     rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(i));
-    rtcReleaseGeometry(geom);
+    attach_top(geom, {static_cast<int>(i), -1});
   }
   if (!desc_.spheres.empty()) {
-    sphere_geom_id_ = static_cast<unsigned>(desc_.instances.size());  // instances hold ids 0..n-1
+    sphere_geom_id_ = static_cast<unsigned>(top_geometries_.size());
     attach_spheres(device, top_, desc_.spheres, sphere_geom_id_);
+    top_geometries_.push_back({});
   }
   rtcCommitScene(top_);
   throw_on_embree_error("building the scene of " + desc_.source);
@@ -138,10 +179,15 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
   rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
-  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID == sphere_geom_id_)
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    // An instanced mesh: Embree's geomID is the primitive within the mesh.
+    reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), rh, hit);
+  } else if (rh.hit.geomID == sphere_geom_id_) {
     reconstruct_sphere_hit(ray, rh, hit);
-  else
-    reconstruct_triangle_hit(rh, hit);
+  } else {
+    const TopGeometry& g = top_geometries_[rh.hit.geomID];
+    reconstruct_triangle_hit(g.instance, g.primitive, rh, hit);
+  }
   return true;
 }
 
@@ -153,17 +199,17 @@ bool Scene::occluded(const Ray& ray) const {
   return r.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 
-void Scene::reconstruct_triangle_hit(const RTCRayHit& rh, SurfaceHit& hit) const {
-  const int instance = static_cast<int>(rh.hit.instID[0]);
+void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const {
   const InstanceDesc& inst = desc_.instances[instance];
-  const PrimitiveDesc& prim = desc_.meshes[inst.mesh].primitives[rh.hit.geomID];
+  const PrimitiveDesc& prim = desc_.meshes[inst.mesh].primitives[primitive];
   const Transform& xf = inst.object_to_world;
+  const bool world_space = xf.is_identity();  // baked meshes need no transform
   const uint32_t* idx = &prim.indices[3 * size_t(rh.hit.primID)];
   const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
 
-  const Vec3 p0 = xf.point(prim.positions[idx[0]]);
-  const Vec3 p1 = xf.point(prim.positions[idx[1]]);
-  const Vec3 p2 = xf.point(prim.positions[idx[2]]);
+  const Vec3 p0 = world_space ? prim.positions[idx[0]] : xf.point(prim.positions[idx[0]]);
+  const Vec3 p1 = world_space ? prim.positions[idx[1]] : xf.point(prim.positions[idx[1]]);
+  const Vec3 p2 = world_space ? prim.positions[idx[2]] : xf.point(prim.positions[idx[2]]);
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
   hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
 
@@ -181,7 +227,7 @@ void Scene::reconstruct_triangle_hit(const RTCRayHit& rh, SurfaceHit& hit) const
   hit.ns = hit.ng;
   if (!prim.normals.empty()) {
     const Vec3 n = prim.normals[idx[0]] * b0 + prim.normals[idx[1]] * b1 + prim.normals[idx[2]] * b2;
-    const Vec3 nw = xf.normal(n);
+    const Vec3 nw = world_space ? n : xf.normal(n);
     const float nlen = length(nw);
     if (nlen > 0 && std::isfinite(nlen)) hit.ns = nw / nlen;
   }
@@ -191,7 +237,7 @@ void Scene::reconstruct_triangle_hit(const RTCRayHit& rh, SurfaceHit& hit) const
     hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
   }
   hit.material = prim.material;
-  const int base = emitters_.triangle_base(instance, static_cast<int>(rh.hit.geomID));
+  const int base = emitters_.triangle_base(instance, primitive);
   hit.emitter = base >= 0 ? base + static_cast<int>(rh.hit.primID) : -1;
 }
 

@@ -16,8 +16,10 @@ namespace prism {
 class Scene {
  public:
   // Validates `desc` (indices in range; throws std::invalid_argument naming the element) and
-  // builds the BVH: one Embree scene per mesh, instanced once per placement; all spheres in
-  // one user geometry.
+  // builds the BVH. A mesh placed once is transformed to world space and goes straight into
+  // the top-level BVH; a mesh placed several times gets its own BVH, instanced per placement
+  // (instancing costs a ray transform per visit, so only scenes that reuse meshes pay it).
+  // All spheres share one user geometry.
   explicit Scene(SceneDesc desc);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -34,13 +36,21 @@ class Scene {
   double build_seconds() const { return build_seconds_; }
 
  private:
-  void reconstruct_triangle_hit(const RTCRayHit& rh, SurfaceHit& hit) const;
+  // What a top-level geometry id stands for.
+  struct TopGeometry {
+    int instance = -1;   // the placement (instances and baked meshes)
+    int primitive = -1;  // baked meshes: the primitive; instances: -1 (Embree's geomID says)
+  };
+
+  void bake_single_use_meshes();
+  void reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 
   SceneDesc desc_;
   SceneFeatures features_;
   RTCScene top_ = nullptr;
-  std::vector<RTCScene> mesh_scenes_;
+  std::vector<RTCScene> mesh_scenes_;  // per mesh; null for meshes baked into the top level
+  std::vector<TopGeometry> top_geometries_;
   unsigned sphere_geom_id_ = RTC_INVALID_GEOMETRY_ID;
   Emitters emitters_;
   double build_seconds_ = 0;

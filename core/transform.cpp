@@ -40,6 +40,7 @@ bool invert(const Mat& m, double det, Mat& out) {
 Transform::Transform() : m_(kIdentity), inv_(kIdentity) {}
 
 Transform::Transform(const std::array<double, 12>& row_major_3x4) : m_(row_major_3x4) {
+  identity_ = m_ == kIdentity;
   determinant_ = det3(m_);
   invertible_ = invert(m_, determinant_, inv_);
 }
@@ -109,8 +110,6 @@ Vec3 Transform::normal(const Vec3& n) const {
           static_cast<float>(i[1] * n.x + i[5] * n.y + i[9] * n.z),
           static_cast<float>(i[2] * n.x + i[6] * n.y + i[10] * n.z)};
 }
-
-bool Transform::is_identity() const { return m_ == kIdentity; }
 
 std::array<float, 12> Transform::matrix_float() const {
   std::array<float, 12> f{};

@@ -31,7 +31,7 @@ class Transform {
   Vec3 normal(const Vec3& n) const;
 
   bool is_invertible() const { return invertible_; }
-  bool is_identity() const;
+  bool is_identity() const { return identity_; }
   // True when the linear part flips orientation (negative determinant): mirrored instances
   // must flip their winding-derived normals.
   bool flips_handedness() const { return determinant_ < 0; }
@@ -45,6 +45,7 @@ class Transform {
   std::array<double, 12> inv_;
   double determinant_ = 1.0;
   bool invertible_ = true;
+  bool identity_ = true;
 };
 
 }  // namespace prism

@@ -38,23 +38,23 @@ class JobParser {
     if (root.contains("resolution")) {
       const json& r = root["resolution"];
       if (!r.is_array() || r.size() != 2) fail("$.resolution", "expected [width, height]");
-      job.width = int_at(r[0], "$.resolution[0]", 1, 1 << 16);
-      job.height = int_at(r[1], "$.resolution[1]", 1, 1 << 16);
+      job.settings.width = int_at(r[0], "$.resolution[0]", 1, 1 << 16);
+      job.settings.height = int_at(r[1], "$.resolution[1]", 1, 1 << 16);
     }
-    if (root.contains("spp")) job.spp = int_at(root["spp"], "$.spp", 1, 1 << 30);
-    if (root.contains("max_depth")) job.max_depth = int_at(root["max_depth"], "$.max_depth", 0, 1 << 16);
+    if (root.contains("spp")) job.settings.spp = int_at(root["spp"], "$.spp", 1, 1 << 30);
+    if (root.contains("max_depth")) job.settings.max_depth = int_at(root["max_depth"], "$.max_depth", 0, 1 << 16);
     if (root.contains("seed")) {
       const json& s = root["seed"];
       if (!s.is_number_unsigned() && !(s.is_number_integer() && s.get<int64_t>() >= 0))
         fail("$.seed", "expected a non-negative integer");
-      job.seed = s.get<uint64_t>();
+      job.settings.seed = s.get<uint64_t>();
     }
     if (root.contains("camera")) {
       const json& c = root["camera"];
-      if (c.is_string()) job.camera = c.get<std::string>();
-      else job.camera = std::to_string(int_at(c, "$.camera", 0, std::numeric_limits<int>::max()));
+      if (c.is_string()) job.settings.camera = c.get<std::string>();
+      else job.settings.camera = std::to_string(int_at(c, "$.camera", 0, std::numeric_limits<int>::max()));
     }
-    if (root.contains("integrator")) job.integrator = string_at(root["integrator"], "$.integrator");
+    if (root.contains("integrator")) job.settings.integrator = string_at(root["integrator"], "$.integrator");
     if (root.contains("materials")) {
       const json& m = root["materials"];
       expect_object(m, "$.materials");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/render_settings.h"
 #include "core/scene_desc.h"
 #include "io/diagnostics.h"
 
@@ -34,9 +35,7 @@ struct JobFile {
   std::string path;
   std::optional<std::string> scene;  // glTF path, resolved against the job file's folder
   std::optional<std::string> output, preview;
-  std::optional<int> width, height, spp, max_depth;
-  std::optional<uint64_t> seed;
-  std::optional<std::string> camera, integrator;
+  RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;
   std::vector<JobSphere> spheres;
 };

@@ -19,12 +19,12 @@ TEST(JobFile, ReadsSettingsAndResolvesPathsAgainstItsFolder) {
     "spp": 16, "max_depth": 3, "seed": 42, "camera": 1, "integrator": "path"})", diag);
   EXPECT_EQ(*job.scene, "/jobs/scenes/box.gltf");
   EXPECT_EQ(*job.output, "/abs/out.exr");
-  EXPECT_EQ(*job.width, 320);
-  EXPECT_EQ(*job.height, 200);
-  EXPECT_EQ(*job.spp, 16);
-  EXPECT_EQ(*job.max_depth, 3);
-  EXPECT_EQ(*job.seed, 42u);
-  EXPECT_EQ(*job.camera, "1");
+  EXPECT_EQ(*job.settings.width, 320);
+  EXPECT_EQ(*job.settings.height, 200);
+  EXPECT_EQ(*job.settings.spp, 16);
+  EXPECT_EQ(*job.settings.max_depth, 3);
+  EXPECT_EQ(*job.settings.seed, 42u);
+  EXPECT_EQ(*job.settings.camera, "1");
   EXPECT_TRUE(diag.empty());
 }
 
@@ -113,7 +113,7 @@ TEST(SceneSource, LoadsJobWithItsGltfAndRejectsUnknownTypes) {
   Diagnostics diag;
   const LoadedScene loaded = load_scene_source(dir + "/job.json", diag);
   ASSERT_TRUE(loaded.job.has_value());
-  EXPECT_EQ(*loaded.job->spp, 3);
+  EXPECT_EQ(*loaded.job->settings.spp, 3);
   EXPECT_EQ(loaded.scene.spheres.size(), 1u);
   EXPECT_FLOAT_EQ(loaded.scene.materials[0].base_color.y, 1.0f);
   EXPECT_EQ(loaded.scene.triangle_count(), 1u);

@@ -2,6 +2,7 @@
 // installed. Expected counts were read from each file's JSON independently of prism's loader.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 
 #include "core/scene.h"
@@ -30,6 +31,14 @@ void expect_counts(const std::string& root, const Expected& e) {
   EXPECT_NO_THROW(Scene{SceneDesc(s)}) << path;  // and it builds
 }
 
+// "Duck/Duck.glb" -> "Duck_Duck_glb": readable test names in CTest.
+std::string asset_name(const ::testing::TestParamInfo<Expected>& info) {
+  std::string name = info.param.path;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
 class SceneAssets : public ::testing::TestWithParam<Expected> {};
 
 TEST_P(SceneAssets, LoadsWithTheRightCounts) {
@@ -45,7 +54,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Expected{"Duck/Duck.glb", 4212, 1, 1, 1, 1},
                       Expected{"CornellBox_lumrapido/cornell_box.glb", 1936, 7, 7, 5, 0},
                       Expected{"2CylinderEngine/2CylinderEngine.glb", 121496, 67, 29, 34, 1},
-                      Expected{"TransmissionTest/TransmissionTest.glb", 128775, 22, 22, 14, 1}));
+                      Expected{"TransmissionTest/TransmissionTest.glb", 128775, 22, 22, 14, 1}),
+    asset_name);
 
 class AssimpModels : public ::testing::TestWithParam<Expected> {};
 
@@ -58,7 +68,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Expected{"BoxTextured-glTF-Embedded/BoxTextured.gltf", 12, 1, 1, 1, 0},
                       Expected{"BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf", 12, 1, 1, 1, 0},
                       Expected{"cameras/Cameras.gltf", 2, 1, 1, 0, 2},
-                      Expected{"2CylinderEngine-glTF-Binary/2CylinderEngine.glb", 121496, 67, 29, 34, 1}));
+                      Expected{"2CylinderEngine-glTF-Binary/2CylinderEngine.glb", 121496, 67, 29, 34, 1}),
+    asset_name);
 
 // This variant lists KHR_technique_webgl (GLSL shaders from glTF 1.0 days) in extensionsRequired:
 // a client without the extension must refuse the file (glTF 2.0 §3.12), so prism reports it.
@@ -78,8 +89,8 @@ TEST(SceneAssets, CornellBoxJobRendersWithItsSettings) {
   Diagnostics diag;
   const LoadedScene loaded = load_scene_source(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.json", diag);
   ASSERT_TRUE(loaded.job);
-  EXPECT_EQ(*loaded.job->spp, 1024);
-  EXPECT_EQ(*loaded.job->width, 512);
+  EXPECT_EQ(*loaded.job->settings.spp, 1024);
+  EXPECT_EQ(*loaded.job->settings.width, 512);
   EXPECT_TRUE(loaded.scene.features().emitters);
   EXPECT_EQ(loaded.scene.cameras.size(), 1u);
 }

@@ -101,6 +101,9 @@ int render(const RenderOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(o.scene, "", e.what());
   }
+  if (scene->emitters().empty() && !o.quiet)
+    fmt::print(stderr, "prism: warning: the scene has no emitting surfaces, so its colour channels render black "
+                       "(environment and punctual lights are not supported yet; alpha still shows coverage)\n");
   const Camera camera(camera_desc, settings.width, settings.height);
   Film film(settings.width, settings.height);
   RenderProgress progress;

@@ -1,0 +1,90 @@
+// Microbenchmarks of the hot pieces: sampling, BSDF and emitter sampling, and Embree ray queries on
+// the Cornell box (the ceiling prism's own Mrays/s is measured against). Prints figures; asserts nothing.
+#include <benchmark/benchmark.h>
+
+#include "core/pcg32.h"
+#include "core/sampler.h"
+#include "core/sampling.h"
+#include "core/scene.h"
+#include "core/spawn.h"
+#include "io/gltf_loader.h"
+#include "materials/bsdf.h"
+
+namespace prism {
+namespace {
+
+const Scene& cornell_box() {
+  static const Scene scene = [] {
+    Diagnostics diag;
+    return Scene(load_gltf(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf", diag));
+  }();
+  return scene;
+}
+
+// Rays from random points inside the box in uniformly random directions.
+std::vector<Ray> random_rays(size_t n) {
+  Pcg32 rng(1, 2);
+  std::vector<Ray> rays(n);
+  for (Ray& r : rays) {
+    r.origin = Vec3(0.05f + 0.45f * rng.next_float(), 0.05f + 0.45f * rng.next_float(), 0.05f + 0.45f * rng.next_float());
+    r.dir = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+  }
+  return rays;
+}
+
+void BM_IndependentSampler(benchmark::State& state) {
+  IndependentSampler s(7);
+  uint64_t i = 0;
+  for (auto _ : state) {
+    s.start_pixel_sample(int(i & 511), int((i >> 9) & 511), i);
+    benchmark::DoNotOptimize(s.next_1d() + s.next_1d() + s.next_1d() + s.next_1d());
+    ++i;
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * 4);
+}
+BENCHMARK(BM_IndependentSampler);
+
+void BM_LambertianSample(benchmark::State& state) {
+  Pcg32 rng(3, 4);
+  const Bsdf bsdf(normalize(Vec3(0.1f, 0.2f, 1.0f)), Vec3(0, 0, 1), normalize(Vec3(0.3f, -0.1f, 1.0f)), Rgb(0.5f));
+  for (auto _ : state) benchmark::DoNotOptimize(bsdf.sample({rng.next_float(), rng.next_float()}));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_LambertianSample);
+
+void BM_EmitterSample(benchmark::State& state) {
+  const Scene& scene = cornell_box();
+  Pcg32 rng(5, 6);
+  const Vec3 ref(0.3f, 0.1f, 0.2f);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(scene.emitters().sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()}));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_EmitterSample);
+
+void BM_IntersectRandomRays(benchmark::State& state) {
+  const Scene& scene = cornell_box();
+  const std::vector<Ray> rays = random_rays(1 << 16);
+  size_t i = 0;
+  SurfaceHit hit;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(scene.intersect(rays[i++ & (rays.size() - 1)], hit));
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_IntersectRandomRays)->ThreadRange(1, 2)->UseRealTime();
+
+void BM_OccludedRandomRays(benchmark::State& state) {
+  const Scene& scene = cornell_box();
+  std::vector<Ray> rays = random_rays(1 << 16);
+  for (Ray& r : rays) r.t_max = 0.3f;
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(scene.occluded(rays[i++ & (rays.size() - 1)]));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_OccludedRandomRays)->ThreadRange(1, 2)->UseRealTime();
+
+}  // namespace
+}  // namespace prism
+
+BENCHMARK_MAIN();

@@ -44,13 +44,38 @@ void BM_IndependentSampler(benchmark::State& state) {
 }
 BENCHMARK(BM_IndependentSampler);
 
-void BM_LambertianSample(benchmark::State& state) {
+// The glTF BSDF for a given material, at a fixed shading frame and outgoing direction.
+void bsdf_sample_benchmark(benchmark::State& state, const SurfaceParams& params) {
   Pcg32 rng(3, 4);
-  const Bsdf bsdf(normalize(Vec3(0.1f, 0.2f, 1.0f)), Vec3(0, 0, 1), normalize(Vec3(0.3f, -0.1f, 1.0f)), Rgb(0.5f));
-  for (auto _ : state) benchmark::DoNotOptimize(bsdf.sample({rng.next_float(), rng.next_float()}));
+  const Bsdf bsdf(params, normalize(Vec3(0.1f, 0.2f, 1.0f)), Vec3(0, 0, 1), normalize(Vec3(0.3f, -0.1f, 1.0f)), 1.5f);
+  for (auto _ : state) benchmark::DoNotOptimize(bsdf.sample(rng.next_float(), {rng.next_float(), rng.next_float()}));
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
-BENCHMARK(BM_LambertianSample);
+
+void BM_BsdfSampleRoughPlastic(benchmark::State& state) {
+  SurfaceParams p;
+  p.base_color = Rgb(0.5f);
+  p.roughness = 0.5f;
+  bsdf_sample_benchmark(state, p);
+}
+BENCHMARK(BM_BsdfSampleRoughPlastic);
+
+void BM_BsdfSampleRoughMetal(benchmark::State& state) {
+  SurfaceParams p;
+  p.metallic = 1;
+  p.roughness = 0.3f;
+  bsdf_sample_benchmark(state, p);
+}
+BENCHMARK(BM_BsdfSampleRoughMetal);
+
+void BM_BsdfSampleRoughGlass(benchmark::State& state) {
+  SurfaceParams p;
+  p.transmission = 1;
+  p.thin_walled = false;
+  p.roughness = 0.3f;
+  bsdf_sample_benchmark(state, p);
+}
+BENCHMARK(BM_BsdfSampleRoughGlass);
 
 void BM_EmitterSample(benchmark::State& state) {
   const Scene& scene = cornell_box();

@@ -46,7 +46,8 @@ void validate_scene_desc(const SceneDesc& desc) {
   for (const TextureDesc& t : desc.textures)
     if (t.image < 0 || t.image >= static_cast<int>(desc.images.size())) fail("texture image index out of range");
   for (const MaterialDesc& m : desc.materials)
-    for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture})
+    for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture, &m.metallic_roughness_texture,
+                                &m.transmission_texture})
       if (r->texture >= static_cast<int>(desc.textures.size()))
         fail("material '" + m.name + "': texture index out of range");
 }

@@ -29,9 +29,15 @@ SceneFeatures SceneDesc::features() const {
   f.spheres = !spheres.empty();
   for (const auto& s : spheres)
     if (material(s.material).is_emissive()) f.emitters = true;
-  f.textures = std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) {
-    return m.base_color_texture.present() || m.emissive_texture.present();
-  });
+  for (const MaterialDesc& m : materials) {
+    if (m.base_color_texture.present() || m.emissive_texture.present() || m.metallic_roughness_texture.present() ||
+        m.transmission_texture.present())
+      f.textures = true;
+    if (m.is_transmissive()) f.transmission = true;
+    if (m.has_volume() && (m.attenuation_distance < std::numeric_limits<float>::infinity()) &&
+        min(m.attenuation_color, Rgb(1.0f)) != Rgb(1.0f))
+      f.absorbing_media = true;
+  }
   return f;
 }
 

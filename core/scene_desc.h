@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,12 +42,24 @@ struct MaterialDesc {
   TextureRef base_color_texture;
   float metallic = 1.0f;
   float roughness = 1.0f;
+  TextureRef metallic_roughness_texture;  // linear; B = metallic, G = roughness
+  float transmission = 0.0f;              // KHR_materials_transmission
+  TextureRef transmission_texture;        // linear; R = transmission
+  float ior = 1.5f;                       // KHR_materials_ior
+  // KHR_materials_volume with thicknessFactor > 0: the mesh bounds a volume that refracts and
+  // absorbs; otherwise transmission is thin-walled (glTF KHR_materials_volume, "thin-walled").
+  bool volume = false;
+  Rgb attenuation_color{1, 1, 1};
+  float attenuation_distance = std::numeric_limits<float>::infinity();
   Rgb emissive{0, 0, 0};
   float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
   TextureRef emissive_texture;
   bool double_sided = false;  // emits from both faces when true; from the front face only otherwise
 
   bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
+  bool is_transmissive() const { return transmission > 0 || transmission_texture.present(); }
+  // A closed volume whose interior is a medium (refraction, absorption).
+  bool has_volume() const { return volume && is_transmissive(); }
 };
 
 // One triangle list with one material (a glTF primitive). Normals and uvs are per vertex and
@@ -104,6 +117,8 @@ struct SceneFeatures {
   bool instancing = false;  // some mesh is placed more than once
   bool textures = false;
   bool emitters = false;
+  bool transmission = false;     // some material transmits light
+  bool absorbing_media = false;  // some volume absorbs
 };
 
 struct SceneDesc {

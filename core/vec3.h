@@ -39,6 +39,7 @@ constexpr Vec3 operator*(float s, Vec3 a) { return a *= s; }
 constexpr Vec3 operator/(Vec3 a, float s) { return a /= s; }
 constexpr Vec3 operator/(const Vec3& a, const Vec3& b) { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
 constexpr bool operator==(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+constexpr bool operator!=(const Vec3& a, const Vec3& b) { return !(a == b); }
 
 constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {

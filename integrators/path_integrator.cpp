@@ -3,70 +3,93 @@
 #include <algorithm>
 
 #include "core/spawn.h"
+#include "integrators/medium_stack.h"
 #include "materials/material_eval.h"
+#include "materials/medium.h"
 
 namespace prism {
 
-// Each bounce draws, in order: emitter pick (1D), point on the emitter (2D), BSDF direction
-// (2D), then the Russian-roulette decision (1D) once it applies.
+// Each bounce draws, in order: emitter pick (1D), point on the emitter (2D), BSDF lobe (1D) and
+// direction (2D), then the Russian-roulette decision (1D) once it applies.
 RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                                   RayCounters& counters) const {
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   RadianceSample out;
   Rgb L(0.0f), beta(1.0f);
+  float eta_scale = 1.0f;  // undoes the 1/eta^2 radiance scaling in Russian roulette decisions
   Ray ray = camera_ray;
   ++counters.camera;
   float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led to the current hit
+  bool prev_delta = true;   // the camera ray counts as a delta event: no MIS for what it sees
   Vec3 prev_p;
+  MediumStack media;
 
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
     if (!scene.intersect(ray, hit, depth == 0)) break;
     if (depth == 0) out.alpha = 1.0f;
+    beta *= beer_lambert(media.sigma_a(), hit.t * length(ray.dir));  // Beer-Lambert along the segment
     const Vec3 wo = -normalize(ray.dir);
 
     // Emission reached by the previous bounce: weighted against next-event estimation by the
-    // power heuristic (Veach 1997, ch. 9), unweighted for the camera ray.
+    // power heuristic (Veach 1997, ch. 9); unweighted after a delta event.
     if (hit.emitter >= 0) {
       const Rgb Le = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
       if (!is_black(Le)) {
         float w = 1.0f;
-        if (depth > 0) w = power_heuristic(prev_bsdf_pdf, emitters.pdf(hit.emitter, prev_p, hit.p, hit.ng));
+        if (!prev_delta) w = power_heuristic(prev_bsdf_pdf, emitters.pdf(hit.emitter, prev_p, hit.p, hit.ng));
         L += beta * Le * w;
       }
     }
     if (depth >= max_depth_) break;
 
-    const Bsdf bsdf = make_bsdf(desc, hit, wo);
+    const MaterialDesc& material = desc.material(hit.material);
+    const bool from_front = dot(wo, hit.ng) > 0;
+    const Bsdf bsdf = make_bsdf(desc, hit, wo, media.interface_eta(material, hit.material, from_front));
 
     // Next-event estimation: one point on one emitter, chosen by power.
-    if (!emitters.empty()) {
+    if (!emitters.empty() && !bsdf.is_delta()) {
       const float u_pick = sampler.next_1d();
       const Vec2 u_point = sampler.next_2d();
       const EmitterSample ls = emitters.sample(hit.p, u_pick, u_point);
       if (ls.pdf > 0) {
-        const Vec3 wi = normalize(ls.p - hit.p);
+        const Vec3 to_light = ls.p - hit.p;
+        const float dist = length(to_light);
+        const Vec3 wi = to_light / dist;
         const Rgb Le = emitted_radiance(desc, ls.material, ls.uv, ls.n, -wi);
         const Rgb f = bsdf.eval(wi);
         if (!is_black(Le) && !is_black(f)) {
           ++counters.shadow;
           const Ray shadow = spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
-          if (!scene.occluded(shadow)) L += beta * f * Le * (power_heuristic(ls.pdf, bsdf.pdf(wi)) / ls.pdf);
+          if (!scene.occluded(shadow)) {
+            // The shadow ray travels in the medium on wi's side of the surface.
+            MediumStack beyond = media;
+            if ((dot(wi, hit.ng) > 0) != from_front) beyond.cross(material, hit.material, from_front);
+            const Rgb tr = beer_lambert(beyond.sigma_a(), dist);
+            L += beta * f * Le * tr * (power_heuristic(ls.pdf, bsdf.pdf(wi)) / ls.pdf);
+          }
         }
       }
     }
 
-    const auto bs = bsdf.sample(sampler.next_2d());
+    const float u_lobe = sampler.next_1d();
+    const auto bs = bsdf.sample(u_lobe, sampler.next_2d());
     if (!bs) break;
     beta *= bs->f_cos / bs->pdf;
     prev_bsdf_pdf = bs->pdf;
+    prev_delta = bs->delta;
     prev_p = hit.p;
+    if (bs->transmission) {
+      media.cross(material, hit.material, from_front);
+      if (material.has_volume()) eta_scale *= bs->eta * bs->eta;
+    }
     ray = spawn_ray(hit.p, hit.p_error, hit.ng, bs->wi);
 
-    // Russian roulette on the throughput: survivors are reweighted, so the estimate stays unbiased.
+    // Russian roulette on the throughput without the radiance scaling of refraction, so paths
+    // inside glass are not killed for having crossed into it; survivors are reweighted.
     if (depth + 1 >= rr_start_depth_) {
-      const float q = std::max(0.0f, 1.0f - max_component(beta));
+      const float q = std::max(0.0f, 1.0f - max_component(beta) * eta_scale);
       if (sampler.next_1d() < q) break;
       beta /= 1.0f - q;
     }

@@ -18,7 +18,8 @@
 namespace prism {
 
 const std::vector<std::string>& supported_gltf_extensions() {
-  static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength"};
+  static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
+                                                      "KHR_materials_ior", "KHR_materials_volume"};
   return kSupported;
 }
 
@@ -75,15 +76,12 @@ class Converter {
     for (const auto& e : model_.extensionsRequired)
       if (!is_supported(e)) unsupported += (unsupported.empty() ? "" : ", ") + e;
     if (!unsupported.empty())
-      fail("extensionsRequired", "prism does not support " + unsupported + " (supported: KHR_materials_emissive_strength)");
+      fail("extensionsRequired", "prism does not support " + unsupported);
     for (const auto& e : model_.extensionsUsed)
       if (!is_supported(e)) diag_.warn("extension " + e + " is not supported yet and is ignored");
   }
 
   void report_unrendered_features() {
-    if (!model_.materials.empty())
-      diag_.warn("glTF metallic-roughness shading is not implemented yet: materials render as Lambertian diffuse "
-                 "with their base colour (" + std::to_string(model_.materials.size()) + " materials)");
     if (!model_.animations.empty())
       diag_.warn(std::to_string(model_.animations.size()) + " animations ignored: the scene renders at rest");
     if (!model_.skins.empty()) diag_.warn(std::to_string(model_.skins.size()) + " skins ignored: meshes render unskinned");
@@ -324,9 +322,29 @@ class Converter {
 
     for (const auto& [name, value] : m.extensions) {
       if (name == "KHR_materials_emissive_strength") {
-        const double s = number(value.Get("emissiveStrength"), 1.0);
-        if (!(s >= 0 && std::isfinite(s))) fail(where, "emissiveStrength must be finite and non-negative");
-        out.emissive_strength = float(s);
+        out.emissive_strength = non_negative(value.Get("emissiveStrength"), 1.0, where + " emissiveStrength");
+      } else if (name == "KHR_materials_transmission") {
+        out.transmission = float(std::min(1.0, non_negative(value.Get("transmissionFactor"), 0.0, where + " transmissionFactor")));
+        out.transmission_texture = texture_info(value.Get("transmissionTexture"), ColorSpace::Linear, where + " transmissionTexture");
+      } else if (name == "KHR_materials_ior") {
+        const double ior = number(value.Get("ior"), 1.5);
+        if (!(ior >= 1.0 && std::isfinite(ior))) fail(where, "KHR_materials_ior ior must be a finite number >= 1");
+        out.ior = float(ior);
+      } else if (name == "KHR_materials_volume") {
+        // thicknessFactor is a rasteriser's stand-in for the distance travelled inside: prism
+        // measures the real path length. Only its zero/non-zero meaning is used: 0 (the default)
+        // makes the material thin-walled, as the extension specifies.
+        out.volume = non_negative(value.Get("thicknessFactor"), 0.0, where + " thicknessFactor") > 0;
+        if (value.Has("thicknessTexture")) diag_.warn("KHR_materials_volume thicknessTexture ignored: prism measures the real thickness");
+        const tinygltf::Value& colour = value.Get("attenuationColor");
+        if (colour.IsArray() && colour.ArrayLen() == 3) {
+          for (int c = 0; c < 3; ++c) out.attenuation_color[c] = float(std::clamp(number(colour.Get(c), 1.0), 0.0, 1.0));
+        }
+        if (value.Has("attenuationDistance")) {
+          const double d = number(value.Get("attenuationDistance"), -1.0);
+          if (!(d > 0)) fail(where, "KHR_materials_volume attenuationDistance must be positive");
+          out.attenuation_distance = float(d);  // may round to +inf: no absorption
+        }
       } else {
         diag_.warn("extension " + name + " is not supported yet and is ignored");
       }
@@ -335,12 +353,34 @@ class Converter {
                                          pbr.baseColorTexture.extensions, ColorSpace::Srgb, where + " baseColorTexture");
     out.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
                                        ColorSpace::Srgb, where + " emissiveTexture");
-    if (pbr.metallicRoughnessTexture.index >= 0) diag_.warn("metallicRoughnessTexture is not supported yet and is ignored");
+    out.metallic_roughness_texture =
+        texture_ref(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                    pbr.metallicRoughnessTexture.extensions, ColorSpace::Linear, where + " metallicRoughnessTexture");
+    if (out.volume && out.transmission <= 0 && !out.transmission_texture.present())
+      diag_.warn("KHR_materials_volume without transmission has no visible effect (the surface is opaque)");
     if (m.normalTexture.index >= 0) diag_.warn("normalTexture (normal mapping) is not supported yet and is ignored");
     if (m.occlusionTexture.index >= 0)
       diag_.warn("occlusionTexture ignored: a path tracer computes occlusion itself");
     if (m.alphaMode != "OPAQUE") diag_.warn("alphaMode " + m.alphaMode + " is not supported yet: surfaces render opaque");
     return out;
+  }
+
+  double non_negative(const tinygltf::Value& v, double fallback, const std::string& where) const {
+    const double x = number(v, fallback);
+    if (!(x >= 0 && std::isfinite(x))) fail(where, "must be a finite non-negative number");
+    return x;
+  }
+
+  // A textureInfo object inside an extension ({"index": i, "texCoord": n, "extensions": ...}).
+  TextureRef texture_info(const tinygltf::Value& v, ColorSpace space, const std::string& where) {
+    if (!v.IsObject() || !v.Has("index")) return {};
+    const tinygltf::Value& index = v.Get("index");
+    if (!index.IsInt()) fail(where, "index must be an integer");
+    const int texcoord = v.Has("texCoord") && v.Get("texCoord").IsInt() ? v.Get("texCoord").GetNumberAsInt() : 0;
+    tinygltf::ExtensionMap none;
+    if (v.Has("extensions") && v.Get("extensions").Has("KHR_texture_transform"))
+      diag_.warn("extension KHR_texture_transform is not supported yet and is ignored");
+    return texture_ref(index.GetNumberAsInt(), texcoord, none, space, where);
   }
 
   TextureRef texture_ref(int texture, int texcoord, const tinygltf::ExtensionMap& extensions, ColorSpace space,

@@ -1,32 +1,143 @@
 #include "materials/bsdf.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace prism {
 
-Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const Vec3& wo, const Rgb& albedo) : lobe_{albedo} {
+Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta)
+    : metal_(p.base_color, p.roughness * p.roughness),
+      dielectric_(eta, p.roughness * p.roughness, p.base_color,
+                  p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume),
+      coat_(eta, p.roughness * p.roughness, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly),
+      diffuse_{p.base_color} {
+  const bool volume_boundary = p.transmission > 0 && !p.thin_walled;
   const float side = dot(wo, ng);
   valid_ = side != 0;
-  ng_ = side < 0 ? -ng : ng;
-  frame_ = Frame::from_normal(side < 0 ? -ns : ns);
+  // Two-sided surfaces look the same from both faces: mirror the frame to wo's side.
+  const bool mirror = !volume_boundary && side < 0;
+  ng_ = mirror ? -ng : ng;
+  Vec3 n = mirror ? -ns : ns;
+  if (dot(n, ng_) < 0) n = -n;  // a shading normal facing into the surface: keep its side right
+  frame_ = Frame::from_normal(n);
+  wo_ = frame_.to_local(wo);
+  if (wo_.z == 0) valid_ = false;
+
+  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
+  const float F = coat_.reflectance(wo_.z);
+  weight_[kMetal] = m;
+  weight_[kDielectric] = (1 - m) * t;
+  weight_[kCoat] = (1 - m) * (1 - t);
+  weight_[kDiffuse] = (1 - m) * (1 - t) * (1 - F);
+  // Choose lobes by their albedo estimate at wo.
+  float pick[kLobes] = {m * std::max(luminance(metal_.reflectance(wo_.z)), 0.05f), weight_[kDielectric],
+                        weight_[kCoat] * F, weight_[kDiffuse] * std::max(luminance(p.base_color), 0.05f)};
+  if (wo_.z < 0) pick[kMetal] = pick[kCoat] = pick[kDiffuse] = 0;  // only a volume boundary is seen from below
+  float total = 0;
+  for (float v : pick) total += v;
+  if (!(total > 0)) valid_ = false;
+  delta_only_ = true;
+  for (int k = 0; k < kLobes; ++k) {
+    pick_[k] = total > 0 ? pick[k] / total : 0;
+    if (pick_[k] > 0 && !lobe_is_delta(k)) delta_only_ = false;
+  }
 }
 
-Rgb Bsdf::eval(const Vec3& wi) const {
-  if (!valid_ || dot(wi, ng_) <= 0) return {};
-  const float cos_i = dot(wi, frame_.n);
-  return cos_i > 0 ? lobe_.f() * cos_i : Rgb{};
+bool Bsdf::lobe_is_delta(int lobe) const {
+  switch (lobe) {
+    case kMetal: return metal_.is_delta();
+    case kDielectric: return dielectric_.is_delta();
+    case kCoat: return coat_.is_delta();
+    default: return false;
+  }
 }
 
-float Bsdf::pdf(const Vec3& wi) const {
-  if (!valid_ || dot(wi, ng_) <= 0) return 0;
-  return Lambertian::pdf(frame_.to_local(wi));
+Rgb Bsdf::lobe_f(int lobe, const Vec3& wi) const {
+  switch (lobe) {
+    case kMetal: return metal_.f(wo_, wi);
+    case kDielectric: return dielectric_.f(wo_, wi);
+    case kCoat: return coat_.f(wo_, wi);
+    default: return wi.z > 0 && wo_.z > 0 ? diffuse_.f() : Rgb{};
+  }
 }
 
-std::optional<BsdfSample> Bsdf::sample(Vec2 u) const {
+float Bsdf::lobe_pdf(int lobe, const Vec3& wi) const {
+  switch (lobe) {
+    case kMetal: return metal_.pdf(wo_, wi);
+    case kDielectric: return dielectric_.pdf(wo_, wi);
+    case kCoat: return coat_.pdf(wo_, wi);
+    default: return wi.z > 0 && wo_.z > 0 ? Lambertian::pdf(wi) : 0.0f;
+  }
+}
+
+// Shading and geometric normals must agree on whether wi reflects or transmits, or light would
+// leak through the surface (Veach 1997, §5.3).
+bool Bsdf::consistent(const Vec3& wi_world, const Vec3& wi_local) const {
+  const float geometric = dot(wi_world, ng_) * dot(frame_.to_world(wo_), ng_);
+  const float shading = wi_local.z * wo_.z;
+  return geometric != 0 && shading != 0 && ((geometric > 0) == (shading > 0));
+}
+
+Rgb Bsdf::eval(const Vec3& wi_world) const {
+  if (!valid_ || delta_only_) return {};
+  const Vec3 wi = frame_.to_local(wi_world);
+  if (!consistent(wi_world, wi)) return {};
+  Rgb f;
+  for (int k = 0; k < kLobes; ++k)
+    if (weight_[k] > 0 && !lobe_is_delta(k)) f += lobe_f(k, wi) * weight_[k];
+  return f * std::abs(wi.z);
+}
+
+float Bsdf::pdf(const Vec3& wi_world) const {
+  if (!valid_ || delta_only_) return 0;
+  const Vec3 wi = frame_.to_local(wi_world);
+  if (!consistent(wi_world, wi)) return 0;
+  float pdf = 0;
+  for (int k = 0; k < kLobes; ++k)
+    if (pick_[k] > 0 && !lobe_is_delta(k)) pdf += pick_[k] * lobe_pdf(k, wi);
+  return pdf;
+}
+
+std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
   if (!valid_) return std::nullopt;
-  const Vec3 local = Lambertian::sample(u);
-  const Vec3 wi = frame_.to_world(local);
-  const float pdf = Lambertian::pdf(local);
-  if (pdf <= 0 || dot(wi, ng_) <= 0) return std::nullopt;
-  return BsdfSample{wi, lobe_.f() * local.z, pdf};
+  // Pick a lobe, then rescale u_lobe to reuse it inside the lobe.
+  int lobe = -1;
+  float start = 0, cdf = 0;
+  for (int k = 0; k < kLobes; ++k) {
+    if (pick_[k] <= 0) continue;
+    lobe = k;
+    start = cdf;
+    cdf += pick_[k];
+    if (u_lobe < cdf) break;
+  }
+  if (lobe < 0) return std::nullopt;
+  const float u_inner = std::clamp((u_lobe - start) / pick_[lobe], 0.0f, 0x1.fffffep-1f);
+
+  std::optional<BxdfSample> s;
+  switch (lobe) {
+    case kMetal: s = metal_.sample(wo_, u); break;
+    case kDielectric: s = dielectric_.sample(wo_, u_inner, u); break;
+    case kCoat: s = coat_.sample(wo_, u_inner, u); break;
+    default:
+      if (wo_.z > 0) s = BxdfSample{Lambertian::sample(u), diffuse_.f(), 0, false, false, 1};
+      if (s) s->pdf = Lambertian::pdf(s->wi);
+  }
+  if (!s || !(s->pdf > 0)) return std::nullopt;
+  BsdfSample out;
+  out.wi = frame_.to_world(s->wi);
+  out.delta = s->delta;
+  out.transmission = s->transmission;
+  out.eta = s->eta;
+  if (!consistent(out.wi, s->wi)) return std::nullopt;
+  if (s->delta) {
+    out.f_cos = s->f * (weight_[lobe] * std::abs(s->wi.z));
+    out.pdf = pick_[lobe] * s->pdf;
+  } else {
+    out.f_cos = eval(out.wi);
+    out.pdf = pdf(out.wi);
+  }
+  if (!(out.pdf > 0) || is_black(out.f_cos)) return std::nullopt;
+  return out;
 }
 
 }  // namespace prism

@@ -1,36 +1,61 @@
-// Bsdf: the scattering function at one shading point, in world space, for a fixed outgoing direction.
+// Bsdf: the glTF 2.0 metallic-roughness BSDF at one shading point (Appendix B, with
+// KHR_materials_transmission and _ior), in world space for a fixed outgoing direction.
 #pragma once
 
 #include <optional>
 
 #include "core/frame.h"
+#include "materials/conductor_bxdf.h"
+#include "materials/dielectric_bxdf.h"
 #include "materials/lambertian.h"
+#include "materials/surface_params.h"
 
 namespace prism {
 
 struct BsdfSample {
   Vec3 wi;
-  Rgb f_cos;  // f(wo, wi) |cos theta_i|
+  Rgb f_cos;  // f(wo, wi) |cos theta_i| (for a delta lobe: the lobe's weight x pdf)
   float pdf = 0;
+  bool delta = false;
+  bool transmission = false;  // wi crosses the surface
+  float eta = 1;              // n_t / n_i when crossing a volume boundary
 };
 
+// f = metallic x metal + (1 - metallic) x [ transmission x dielectric(R + T)
+//                                          + (1 - transmission) x (coat R + (1 - F(wo)) x diffuse) ]
+// Lobes are sampled in proportion to their estimated albedo at wo; non-delta samples are weighted
+// by the whole mixture (one-sample MIS over lobes).
 class Bsdf {
  public:
-  // ns and ng are unit shading and geometric normals (any orientation); wo points away from
-  // the surface. Both normals are flipped to wo's side of the geometric surface.
-  Bsdf(const Vec3& ns, const Vec3& ng, const Vec3& wo, const Rgb& albedo);
+  // ns, ng: unit shading and geometric normals, ng on the front (outside) face; wo points away
+  // from the surface; eta = n_back / n_front at this interface. Opaque and thin-walled surfaces
+  // are two-sided (mirrored to wo's side); volume boundaries are not.
+  Bsdf(const SurfaceParams& params, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta);
 
-  // f(wo, wi) |cos theta_i| (with the shading normal); zero for wi below the geometric surface,
-  // so shading normals never let light through it.
-  Rgb eval(const Vec3& wi) const;
-  float pdf(const Vec3& wi) const;
-  std::optional<BsdfSample> sample(Vec2 u) const;
+  Rgb eval(const Vec3& wi) const;  // f |cos theta_i|, non-delta lobes only
+  float pdf(const Vec3& wi) const;  // non-delta lobes only
+  std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
+  // True when every lobe with weight is a delta lobe: next-event estimation cannot help.
+  bool is_delta() const { return delta_only_; }
 
  private:
-  Frame frame_;  // around the oriented shading normal
-  Vec3 ng_;      // oriented geometric normal
-  Lambertian lobe_;
-  bool valid_;   // false when wo grazes the geometric surface exactly
+  enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };
+
+  Rgb lobe_f(int lobe, const Vec3& wi) const;
+  float lobe_pdf(int lobe, const Vec3& wi) const;
+  bool lobe_is_delta(int lobe) const;
+  bool consistent(const Vec3& wi_world, const Vec3& wi_local) const;
+
+  Frame frame_;
+  Vec3 ng_;
+  Vec3 wo_;  // local
+  float weight_[kLobes] = {};
+  float pick_[kLobes] = {};
+  ConductorBxdf metal_;
+  DielectricBxdf dielectric_, coat_;
+  Lambertian diffuse_;
+  bool valid_ = true;
+  bool delta_only_ = false;
 };
 
 }  // namespace prism

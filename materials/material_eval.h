@@ -1,21 +1,26 @@
-// Material evaluation: turns a glTF material and a hit's uv into a BSDF and emitted radiance.
+// Material evaluation: turns a glTF material and a hit's uv into shading parameters, a BSDF and
+// emitted radiance.
 #pragma once
 
 #include "core/scene_desc.h"
 #include "core/surface_hit.h"
 #include "materials/bsdf.h"
+#include "materials/surface_params.h"
 
 namespace prism {
 
 // Base colour (factor x sRGB-decoded texture), linear.
 Rgb base_color(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv);
 
+// Every glTF factor multiplied by its texture at uv.
+SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv);
+
 // Radiance emitted by material `material` at uv toward w, for a surface whose front-face
 // normal is ng: emissive factor x texture x strength, from the front face only unless the
 // material is double-sided.
 Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& ng, const Vec3& w);
 
-// The BSDF at a hit, for light leaving toward wo.
-Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo);
+// The BSDF at a hit, for light leaving toward wo; eta = n_back / n_front at the surface.
+Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta);
 
 }  // namespace prism

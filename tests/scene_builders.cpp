@@ -7,6 +7,7 @@ int add_material(SceneDesc& scene, const Rgb& albedo, const Rgb& emission, bool 
   m.name = "material " + std::to_string(scene.materials.size());
   m.base_color = albedo;
   m.metallic = 0;
+  m.ior = 1.0f;  // no specular layer: a pure Lambertian reflector with this albedo
   m.emissive = emission;
   m.double_sided = double_sided;
   scene.materials.push_back(m);

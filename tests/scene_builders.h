@@ -5,7 +5,7 @@
 
 namespace prism::test {
 
-// Adds a material and returns its index.
+// Adds a pure Lambertian material (non-metal with IOR 1, so no specular layer); returns its index.
 int add_material(SceneDesc& scene, const Rgb& albedo, const Rgb& emission = Rgb(0.0f), bool double_sided = false);
 
 // Adds a quad (two triangles) with corners c, c+u, c+u+v, c+v as a one-primitive mesh placed by

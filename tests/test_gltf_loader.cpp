@@ -174,17 +174,17 @@ TEST_F(GltfLoaderTest, UnsupportedRequiredExtensionIsAnError) {
 
 TEST_F(GltfLoaderTest, UnsupportedFeaturesAreWarnedOnce) {
   GltfWriter w;
-  w.doc()["extensionsUsed"] = {"KHR_materials_transmission"};
-  json mat = {{"alphaMode", "BLEND"}, {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}}};
+  w.doc()["extensionsUsed"] = {"KHR_materials_sheen"};
+  json mat = {{"alphaMode", "BLEND"}, {"extensions", {{"KHR_materials_sheen", {{"sheenRoughnessFactor", 1}}}}}};
   w.doc()["materials"] = json::array({mat, mat, mat});
   const int pos = w.add_positions(kTriangle);
   w.set_scene_nodes({w.add_node({{"mesh", w.add_mesh(pos, -1, 0)}}), w.add_node({{"mesh", w.add_mesh(pos, -1, 1)}})});
   load(w);
   const auto lines = diag_.lines();
-  int transmission = 0;
+  int sheen = 0;
   for (const auto& l : lines)
-    if (l.find("KHR_materials_transmission") != std::string::npos) ++transmission;
-  EXPECT_EQ(transmission, 1);
+    if (l.find("KHR_materials_sheen") != std::string::npos) ++sheen;
+  EXPECT_EQ(sheen, 1);
   EXPECT_TRUE(diag_.contains("alphaMode BLEND"));
 }
 

@@ -117,16 +117,18 @@ def main():
     peak = max(LIGHT_RADIANCE)
     materials = []
     for name, colour in MATERIALS.items():
+        # IOR 1 removes glTF's specular layer: the classic box is purely Lambertian.
         m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*colour, 1.0], "metallicFactor": 0.0,
-                                                     "roughnessFactor": 1.0}}
+                                                     "roughnessFactor": 1.0},
+             "extensions": {"KHR_materials_ior": {"ior": 1.0}}}
         if name == "light":
             m["emissiveFactor"] = [c / peak for c in LIGHT_RADIANCE]
-            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": peak}}
+            m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": peak}
         materials.append(m)
 
     gltf = {
         "asset": {"version": "2.0", "generator": "prism scenes/cornell-box/generate.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_ior"],
         "scene": 0,
         "scenes": [{"name": "cornell-box", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,

@@ -1,0 +1,140 @@
+#include "materials/dielectric_bxdf.h"
+
+#include <cmath>
+
+#include "materials/fresnel.h"
+
+namespace prism {
+namespace {
+
+inline Vec3 flip_z(const Vec3& v) { return {v.x, v.y, -v.z}; }
+
+}  // namespace
+
+float DielectricBxdf::reflectance(float cos_o) const {
+  if (mode_ != Mode::ThinWalled) return fresnel_dielectric(cos_o, eta_);
+  // Both faces of a thin sheet border the same medium: symmetric, and never totally reflecting.
+  const float r = fresnel_dielectric(std::abs(cos_o), eta_);
+  // A sheet reflects r at the first face plus t r t + t r^3 t + ... from inside (a geometric
+  // series), so R = r + t^2 r / (1 - r^2) with t = 1 - r.
+  const float t = 1.0f - r;
+  return r < 1.0f ? r + t * t * r / (1.0f - r * r) : 1.0f;
+}
+
+bool DielectricBxdf::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const {
+  const float cos_o = wo.z, cos_i = wi.z;
+  if (cos_o == 0 || cos_i == 0) return false;
+  const bool reflect = cos_o * cos_i > 0;
+  if (reflect || mode_ == Mode::ThinWalled) {
+    // Thin walls transmit along the mirror image of the reflected direction.
+    etap = 1.0f;
+    wm = wo + (reflect ? wi : flip_z(wi));
+  } else {
+    etap = cos_o > 0 ? eta_ : 1.0f / eta_;
+    wm = wi * etap + wo;  // generalised half vector (Walter et al. eq. 16)
+  }
+  const float len2 = length_squared(wm);
+  if (!(len2 > 0)) return false;
+  wm = face_forward(wm / std::sqrt(len2), Vec3(0, 0, 1));
+  return true;
+}
+
+Rgb DielectricBxdf::f(const Vec3& wo, const Vec3& wi) const {
+  if (is_delta()) return {};
+  const bool reflect = wo.z * wi.z > 0;
+  if (!reflect && mode_ == Mode::ReflectionOnly) return {};
+  Vec3 wm;
+  float etap;
+  if (!half_vector(wo, wi, wm, etap)) return {};
+  const Vec3 wi_m = (reflect || mode_ != Mode::ThinWalled) ? wi : flip_z(wi);
+  // Microfacets seen from behind contribute nothing.
+  if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return {};
+  const float R = reflectance(dot(wo, wm));
+  const float cos_o = std::abs(wo.z), cos_i = std::abs(wi.z);
+  if (reflect) return Rgb(ggx_.D(wm) * ggx_.G(wo, wi) * R / (4.0f * cos_i * cos_o));
+  if (mode_ == Mode::ThinWalled) return tint_ * (ggx_.D(wm) * ggx_.G(wo, wi_m) * (1.0f - R) / (4.0f * cos_i * cos_o));
+  // Walter et al. eq. 21, with radiance scaled by 1 / etap^2 crossing the boundary.
+  const float denom = dot(wi, wm) + dot(wo, wm) / etap;
+  const float ft = ggx_.D(wm) * ggx_.G(wo, wi) * (1.0f - R) *
+                   std::abs(dot(wi, wm) * dot(wo, wm) / (cos_i * cos_o * denom * denom));
+  return tint_ * (ft / (etap * etap));
+}
+
+float DielectricBxdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  if (is_delta()) return 0;
+  const bool reflect = wo.z * wi.z > 0;
+  if (!reflect && mode_ == Mode::ReflectionOnly) return 0;
+  Vec3 wm;
+  float etap;
+  if (!half_vector(wo, wi, wm, etap)) return 0;
+  const Vec3 wi_m = (reflect || mode_ != Mode::ThinWalled) ? wi : flip_z(wi);
+  if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return 0;
+  const float R = reflectance(dot(wo, wm));
+  const float pr = mode_ == Mode::ReflectionOnly ? 1.0f : R;
+  const float pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
+  if (pr + pt <= 0) return 0;
+  if (reflect || mode_ == Mode::ThinWalled) {
+    // dwm/dwi = 1 / (4 |wo.wm|) for the mirror direction.
+    return ggx_.D_visible(wo, wm) / (4.0f * std::abs(dot(wo, wm))) * (reflect ? pr : pt) / (pr + pt);
+  }
+  const float denom = dot(wi, wm) + dot(wo, wm) / etap;
+  const float dwm_dwi = std::abs(dot(wi, wm)) / (denom * denom);
+  return ggx_.D_visible(wo, wm) * dwm_dwi * pt / (pr + pt);
+}
+
+std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, Vec2 u) const {
+  if (wo.z == 0) return std::nullopt;
+  if (is_delta()) {
+    // Smooth interface: mirror reflection or refraction, chosen in proportion to Fresnel.
+    const float R = reflectance(wo.z);
+    const float pr = R, pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
+    if (pr + pt <= 0) return std::nullopt;
+    const float cos_o = std::abs(wo.z);
+    BxdfSample s;
+    s.delta = true;
+    if (u_lobe < pr / (pr + pt)) {
+      s.wi = Vec3(-wo.x, -wo.y, wo.z);
+      s.pdf = pr / (pr + pt);
+      s.f = Rgb(R / cos_o);
+      return s;
+    }
+    s.transmission = true;
+    s.pdf = pt / (pr + pt);
+    if (mode_ == Mode::ThinWalled || eta_ == 1.0f) {
+      s.wi = -wo;
+      s.f = tint_ * ((1.0f - R) / cos_o);
+      return s;
+    }
+    const float etap = wo.z > 0 ? eta_ : 1.0f / eta_;
+    if (!refract(wo, Vec3(0, 0, wo.z > 0 ? 1.0f : -1.0f), etap, s.wi)) return std::nullopt;
+    s.eta = etap;
+    s.f = tint_ * ((1.0f - R) / std::abs(s.wi.z) / (etap * etap));
+    return s;
+  }
+
+  const Vec3 wm = ggx_.sample_visible(wo, u);  // in wo's hemisphere
+  // Fresnel takes the cosine against the +z-facing normal: negative from the back (eta inverts).
+  const float R = reflectance(dot(wo, wm.z < 0 ? -wm : wm));
+  const float pr = mode_ == Mode::ReflectionOnly ? 1.0f : R;
+  const float pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
+  BxdfSample s;
+  if (u_lobe < pr / (pr + pt)) {
+    s.wi = reflect(wo, wm);
+    if (s.wi.z * wo.z <= 0) return std::nullopt;
+  } else if (mode_ == Mode::ThinWalled) {
+    s.wi = flip_z(reflect(wo, wm));
+    if (s.wi.z * wo.z >= 0) return std::nullopt;
+    s.transmission = true;
+  } else {
+    const float etap = wo.z > 0 ? eta_ : 1.0f / eta_;
+    if (!refract(wo, wm, etap, s.wi) || s.wi.z * wo.z >= 0) return std::nullopt;
+    s.transmission = true;
+    s.eta = etap;
+  }
+  s.f = f(wo, s.wi);
+  s.pdf = pdf(wo, s.wi);
+  if (!(s.pdf > 0)) return std::nullopt;
+  return s;
+}
+
+}  // namespace prism

@@ -1,0 +1,45 @@
+// DielectricBxdf: reflection and transmission at a dielectric interface (smooth or GGX-rough,
+// Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007), with exact
+// Fresnel, optional thin-walled transmission, and a reflection-only mode for coats.
+#pragma once
+
+#include <optional>
+
+#include "materials/bxdf_sample.h"
+#include "materials/microfacet.h"
+
+namespace prism {
+
+class DielectricBxdf {
+ public:
+  enum class Mode {
+    Volume,         // a boundary between two media: transmission refracts
+    ThinWalled,     // an infinitely thin sheet: transmission passes straight through
+    ReflectionOnly  // the specular layer of an opaque dielectric (a coat)
+  };
+
+  // eta = n_back / n_front (+z is the front); alpha = roughness^2; tint multiplies transmission.
+  DielectricBxdf(float eta, float alpha, const Rgb& tint, Mode mode)
+      : eta_(eta), ggx_(alpha), smooth_(alpha < GgxDistribution::kSmoothAlpha), tint_(tint), mode_(mode) {}
+
+  bool is_delta() const { return smooth_ || eta_ == 1.0f; }
+  Rgb f(const Vec3& wo, const Vec3& wi) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  std::optional<BxdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const;
+
+  // Reflectance of the interface at cosine cos_o from the front (+) or back (-); for thin walls
+  // it includes the light reflected back and forth inside the sheet.
+  float reflectance(float cos_o) const;
+
+ private:
+  // Microfacet normal for a reflection or refraction pair, in the +z hemisphere; false if none.
+  bool half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const;
+
+  float eta_;
+  GgxDistribution ggx_;
+  bool smooth_;
+  Rgb tint_;
+  Mode mode_;
+};
+
+}  // namespace prism

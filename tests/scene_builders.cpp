@@ -58,6 +58,28 @@ int add_inward_box(SceneDesc& scene, const Vec3& lo, const Vec3& hi, int materia
   return add_mesh(scene, std::move(prim), Transform());
 }
 
+int add_box(SceneDesc& scene, const Vec3& lo, const Vec3& hi, int material) {
+  const int mesh = add_inward_box(scene, lo, hi, material);
+  // Swapping two corners of every triangle turns each face outward.
+  auto& idx = scene.meshes[mesh].primitives[0].indices;
+  for (size_t t = 0; t + 2 < idx.size(); t += 3) std::swap(idx[t + 1], idx[t + 2]);
+  return mesh;
+}
+
+int add_glass(SceneDesc& scene, float ior, const Rgb& attenuation, float distance, bool thin_walled, float roughness) {
+  MaterialDesc m;
+  m.name = "glass " + std::to_string(scene.materials.size());
+  m.metallic = 0;
+  m.roughness = roughness;
+  m.transmission = 1;
+  m.ior = ior;
+  m.volume = !thin_walled;
+  m.attenuation_color = attenuation;
+  m.attenuation_distance = distance;
+  scene.materials.push_back(m);
+  return static_cast<int>(scene.materials.size()) - 1;
+}
+
 int add_sphere(SceneDesc& scene, const Vec3& center, float radius, int material) {
   SphereDesc s;
   s.center = center;

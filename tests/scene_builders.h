@@ -16,6 +16,14 @@ int add_quad(SceneDesc& scene, const Vec3& c, const Vec3& u, const Vec3& v, int 
 // Adds an axis-aligned box [lo, hi] as one mesh of 12 triangles whose front faces point inward.
 int add_inward_box(SceneDesc& scene, const Vec3& lo, const Vec3& hi, int material);
 
+// Adds an axis-aligned box [lo, hi] as one closed mesh whose front faces point outward.
+int add_box(SceneDesc& scene, const Vec3& lo, const Vec3& hi, int material);
+
+// Adds a glass material: smooth (unless roughness > 0), transmission 1, white, with a volume
+// (refracting and absorbing: sigma_a = -ln(attenuation) / distance) unless thin_walled.
+int add_glass(SceneDesc& scene, float ior, const Rgb& attenuation = Rgb(1.0f), float distance = 1.0f,
+              bool thin_walled = false, float roughness = 0.0f);
+
 int add_sphere(SceneDesc& scene, const Vec3& center, float radius, int material);
 
 }  // namespace prism::test

@@ -12,19 +12,21 @@ namespace prism {
 // Isotropic GGX in the local frame (+z the macro normal), alpha = glTF roughness^2.
 class GgxDistribution {
  public:
-  // Below this alpha the surface is treated as perfectly smooth (delta lobes): the distribution
-  // would otherwise need more than float precision.
-  static constexpr float kSmoothAlpha = 1e-4f;
+  // Below this alpha the surface is treated as perfectly smooth (delta lobes), as pbrt-v4 does:
+  // narrower lobes exceed what float directions resolve.
+  static constexpr float kSmoothAlpha = 1e-3f;
 
   explicit GgxDistribution(float alpha) : alpha_(std::max(alpha, kSmoothAlpha)) {}
   float alpha() const { return alpha_; }
 
-  // Normal distribution D(wm) (Walter et al. 2007, eq. 33).
+  // Normal distribution D(wm) (Walter et al. 2007, eq. 33) for a unit wm, with its denominator
+  // cos^2 (a^2 - 1) + 1 written as sin^2 + cos^2 a^2: the former cancels to 0 in float at the
+  // peak once a^2 is below half an ulp of 1.
   float D(const Vec3& wm) const {
     const float c2 = wm.z * wm.z;
     if (c2 <= 0) return 0;
     const float a2 = alpha_ * alpha_;
-    const float t = c2 * (a2 - 1.0f) + 1.0f;
+    const float t = (wm.x * wm.x + wm.y * wm.y) + c2 * a2;
     return a2 / (kPi * t * t);
   }
 
@@ -32,7 +34,7 @@ class GgxDistribution {
   float lambda(const Vec3& w) const {
     const float c2 = w.z * w.z;
     if (c2 <= 0) return 1e30f;
-    const float tan2 = std::max(0.0f, 1.0f - c2) / c2;
+    const float tan2 = (w.x * w.x + w.y * w.y) / c2;  // not (1 - c2) / c2: no cancellation near the pole
     return 0.5f * (std::sqrt(1.0f + alpha_ * alpha_ * tan2) - 1.0f);
   }
   float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }

@@ -12,6 +12,7 @@
 #include "materials/conductor_bxdf.h"
 #include "materials/dielectric_bxdf.h"
 #include "materials/fresnel.h"
+#include "materials/microfacet.h"
 #include "statistics.h"
 
 namespace prism {
@@ -271,6 +272,61 @@ TEST(Reciprocity, ReflectionLobesAreSymmetric) {
       const DielectricBxdf d(1.5f, alpha, Rgb(1.0f), DielectricBxdf::Mode::Volume);
       ASSERT_NEAR(d.f(a, b).x, d.f(b, a).x, 1e-4f * std::max(1.0f, d.f(a, b).x));
     }
+  }
+}
+
+// --- Robustness ------------------------------------------------------------------------------
+
+TEST(Ggx, FiniteAtThePeakAndNormalisedForNarrowLobes) {
+  // Regression: cos^2 (a^2 - 1) + 1 cancelled to 0 in float for a^2 below half an ulp of 1,
+  // making D infinite at the mirror direction (seen as NaN samples on TransmissionTest).
+  for (float alpha : {1.0001e-3f, 2e-3f, 0.01f, 0.2f, 1.0f}) {
+    const GgxDistribution g(alpha);
+    EXPECT_TRUE(std::isfinite(g.D(Vec3(0, 0, 1)))) << alpha;
+    EXPECT_NEAR(g.D(Vec3(0, 0, 1)), 1.0 / (kPi * alpha * alpha), 1e-3 / (kPi * alpha * alpha)) << alpha;
+    // Projected area: the integral of D(wm) cos(theta_m) over the hemisphere is 1. Integrate in
+    // u = tan^2(theta) / alpha^2, where the lobe's width is 1 whatever alpha.
+    double integral = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const double u0 = double(i) / n, u1 = double(i + 1) / n;
+      const double x0 = u0 / (1 - u0 + 1e-300), x1 = u1 < 1 ? u1 / (1 - u1) : 1e300;  // map [0,1) to [0,inf)
+      const double xm = 0.5 * (x0 + std::min(x1, x0 + 1e6));
+      const double tan_t = alpha * std::sqrt(xm), c = 1 / std::sqrt(1 + tan_t * tan_t);
+      const double s_ = tan_t * c;
+      const double d_theta = alpha * 0.5 / std::sqrt(xm) * c * c * (std::min(x1, x0 + 1e6) - x0);
+      integral += g.D(Vec3(float(s_), 0, float(c))) * c * s_ * 2 * kPi * d_theta;
+    }
+    EXPECT_NEAR(integral, 1.0, 2e-3) << alpha;
+  }
+}
+
+TEST(Bsdf, EverySampleEvalAndPdfIsFinite) {
+  Pcg32 rng(21, 22);
+  const float etas[] = {1.0f, 1.0001f, 1.33f, 1.5f, 2.42f, 4.0f, 1.0f / 1.5f};
+  const float roughnesses[] = {0.0f, 0.0316f, 0.0317f, 0.04f, 0.1f, 0.5f, 1.0f};
+  for (int i = 0; i < 200000; ++i) {
+    SurfaceParams p;
+    p.base_color = Rgb(rng.next_float(), rng.next_float(), rng.next_float());
+    p.metallic = rng.next_float() < 0.3f ? 1.0f : rng.next_float() * (rng.next_float() < 0.5f);
+    p.roughness = roughnesses[rng.next_u32() % 7];
+    p.transmission = rng.next_float() < 0.5f ? 0.0f : rng.next_float();
+    p.thin_walled = rng.next_float() < 0.5f;
+    const float eta = etas[rng.next_u32() % 7];
+    const float theta = (rng.next_float() < 0.2f ? 1.5707f + 0.0001f * rng.next_float() : 3.1416f * rng.next_float());
+    const float phi = kTwoPi * rng.next_float();
+    const Vec3 wo(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    const Vec3 ns = normalize(Vec3(0.2f * (rng.next_float() - 0.5f), 0.2f * (rng.next_float() - 0.5f), 1.0f));
+    const Bsdf b(p, ns, Vec3(0, 0, 1), wo, eta);
+    const auto s = b.sample(rng.next_float(), {rng.next_float(), rng.next_float()});
+    if (s) {
+      ASSERT_TRUE(std::isfinite(s->pdf) && s->pdf > 0) << i;
+      ASSERT_TRUE(is_finite(s->f_cos)) << i;
+      ASSERT_TRUE(is_finite(s->wi) && std::abs(length(s->wi) - 1.0f) < 1e-3f) << i;
+    }
+    const Vec3 wi = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+    ASSERT_TRUE(is_finite(b.eval(wi))) << i;
+    ASSERT_TRUE(std::isfinite(b.pdf(wi))) << i;
   }
 }
 

@@ -85,6 +85,11 @@ class JobParser {
     return j.get<std::string>();
   }
 
+  bool bool_at(const json& j, const std::string& where) const {
+    if (!j.is_boolean()) fail(where, "expected true or false");
+    return j.get<bool>();
+  }
+
   int int_at(const json& j, const std::string& where, int lo, int hi) const {
     if (!j.is_number_integer()) fail(where, "expected an integer");
     const auto v = j.get<int64_t>();
@@ -111,7 +116,8 @@ class JobParser {
 
   MaterialEdit material(const std::string& name, const json& j, const std::string& where) {
     expect_object(j, where);
-    warn_unknown(j, where, {"base_color", "metallic", "roughness", "emissive", "emissive_strength", "double_sided"});
+    warn_unknown(j, where, {"base_color", "metallic", "roughness", "emissive", "emissive_strength", "double_sided",
+                            "transmission", "ior", "volume", "attenuation_color", "attenuation_distance"});
     MaterialEdit m;
     m.name = name;
     constexpr double kMax = 3.0e38;
@@ -121,9 +127,15 @@ class JobParser {
     if (j.contains("emissive")) m.emissive = vec3_at(j["emissive"], where + ".emissive", 0, kMax);
     if (j.contains("emissive_strength"))
       m.emissive_strength = number_at(j["emissive_strength"], where + ".emissive_strength", 0, kMax);
-    if (j.contains("double_sided")) {
-      if (!j["double_sided"].is_boolean()) fail(where + ".double_sided", "expected true or false");
-      m.double_sided = j["double_sided"].get<bool>();
+    if (j.contains("double_sided")) m.double_sided = bool_at(j["double_sided"], where + ".double_sided");
+    if (j.contains("transmission")) m.transmission = number_at(j["transmission"], where + ".transmission", 0, 1);
+    if (j.contains("ior")) m.ior = number_at(j["ior"], where + ".ior", 1, 1e3);
+    if (j.contains("volume")) m.volume = bool_at(j["volume"], where + ".volume");
+    if (j.contains("attenuation_color"))
+      m.attenuation_color = vec3_at(j["attenuation_color"], where + ".attenuation_color", 0, 1);
+    if (j.contains("attenuation_distance")) {
+      m.attenuation_distance = number_at(j["attenuation_distance"], where + ".attenuation_distance", 0, kMax);
+      if (!(*m.attenuation_distance > 0)) fail(where + ".attenuation_distance", "must be positive");
     }
     return m;
   }
@@ -165,6 +177,11 @@ void apply_edit(const MaterialEdit& e, MaterialDesc& m) {
   if (e.emissive) m.emissive = *e.emissive;
   if (e.emissive_strength) m.emissive_strength = *e.emissive_strength;
   if (e.double_sided) m.double_sided = *e.double_sided;
+  if (e.transmission) m.transmission = *e.transmission;
+  if (e.ior) m.ior = *e.ior;
+  if (e.volume) m.volume = *e.volume;
+  if (e.attenuation_color) m.attenuation_color = *e.attenuation_color;
+  if (e.attenuation_distance) m.attenuation_distance = *e.attenuation_distance;
 }
 
 }  // namespace

@@ -22,6 +22,10 @@ struct MaterialEdit {
   std::optional<Rgb> emissive;
   std::optional<float> emissive_strength;
   std::optional<bool> double_sided;
+  std::optional<float> transmission, ior;
+  std::optional<bool> volume;  // a closed volume (refracts, absorbs) rather than a thin sheet
+  std::optional<Rgb> attenuation_color;
+  std::optional<float> attenuation_distance;
 };
 
 struct JobSphere {

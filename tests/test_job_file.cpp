@@ -94,6 +94,23 @@ TEST(JobFile, OverridesMaterialsAndAddsSpheres) {
   EXPECT_TRUE(scene.features().emitters);
 }
 
+TEST(JobFile, GlassMaterialFields) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({"materials": {"glass": {"transmission": 1, "ior": 1.33, "volume": true,
+      "attenuation_color": [0.5, 0.9, 1], "attenuation_distance": 0.2}}})", diag);
+  SceneDesc scene;
+  apply_job_edits(job, scene);
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const MaterialDesc& m = scene.materials[0];
+  EXPECT_TRUE(m.has_volume());
+  EXPECT_FLOAT_EQ(m.ior, 1.33f);
+  EXPECT_FLOAT_EQ(m.attenuation_color.x, 0.5f);
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 0.2f);
+  EXPECT_TRUE(diag.empty());
+  EXPECT_THROW(parse(R"({"materials": {"g": {"ior": 0.5}}})", diag), InputError);
+  EXPECT_THROW(parse(R"({"materials": {"g": {"attenuation_distance": 0}}})", diag), InputError);
+}
+
 TEST(JobFile, SphereWithUnknownMaterialIsAnError) {
   Diagnostics diag;
   const JobFile job = parse(R"({"spheres": [{"center": [0, 0, 0], "radius": 1, "material": "nope"}]})", diag);

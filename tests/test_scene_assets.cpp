@@ -85,6 +85,26 @@ TEST(AssimpModels, RequiredTechniqueExtensionIsReported) {
   }
 }
 
+TEST(SceneAssets, CornellGlassHasGlassAMirrorAndAnAbsorbingVolume) {
+  Diagnostics diag;
+  const LoadedScene loaded = load_scene_source(PRISM_SOURCE_DIR "/scenes/cornell-glass/cornell-glass.json", diag);
+  const SceneFeatures f = loaded.scene.features();
+  EXPECT_TRUE(f.transmission);
+  EXPECT_TRUE(f.absorbing_media);
+  EXPECT_TRUE(f.spheres);
+  ASSERT_EQ(loaded.scene.spheres.size(), 2u);
+  const MaterialDesc& glass = loaded.scene.material(loaded.scene.spheres[0].material);
+  EXPECT_TRUE(glass.has_volume());
+  EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+  const MaterialDesc& mirror = loaded.scene.material(loaded.scene.spheres[1].material);
+  EXPECT_FLOAT_EQ(mirror.metallic, 1.0f);
+  const int tinted = loaded.scene.find_material("tinted_glass");
+  ASSERT_GE(tinted, 0);
+  EXPECT_TRUE(loaded.scene.materials[tinted].has_volume());
+  EXPECT_FLOAT_EQ(loaded.scene.materials[tinted].attenuation_distance, 0.1f);
+  EXPECT_TRUE(diag.empty()) << diag.lines().front();
+}
+
 TEST(SceneAssets, CornellBoxJobRendersWithItsSettings) {
   Diagnostics diag;
   const LoadedScene loaded = load_scene_source(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.json", diag);

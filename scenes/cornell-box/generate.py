@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes cornell-box.gltf: the Cornell box from the measured data published by the Cornell
 University Program of Computer Graphics (www.graphics.cornell.edu/online/box/data.html),
-converted from millimetres to metres. Standard library only; run it to regenerate the file."""
+converted from millimetres to metres; and ../cornell-glass/cornell-glass.gltf, the same box
+with the tall block made of tinted, absorbing glass. Standard library only; run it to
+regenerate both files."""
 import base64
 import json
 import math
@@ -16,6 +18,17 @@ MATERIALS = {
     "red": (0.63, 0.065, 0.05),
     "green": (0.14, 0.45, 0.091),
     "light": (0.78, 0.78, 0.78),
+}
+# The glass variant's tall block: clear glass (IOR 1.5) whose interior absorbs towards teal,
+# keeping 45% / 80% / 90% of red / green / blue per 10 cm (KHR_materials_volume).
+TINTED_GLASS = {
+    "name": "tinted_glass",
+    "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+    "extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_ior": {"ior": 1.5},
+        "KHR_materials_volume": {"thicknessFactor": 0.16, "attenuationColor": [0.45, 0.8, 0.9], "attenuationDistance": 0.1},
+    },
 }
 LIGHT_RADIANCE = (17.0, 12.0, 4.0)  # W / (sr m^2) per channel
 
@@ -75,7 +88,7 @@ def oriented(quad, facing, object_centre):
     return quad if dot(normal, want) > 0 else list(reversed(quad))
 
 
-def main():
+def build(glass):
     blob = bytearray()
     buffer_views, accessors, meshes, nodes = [], [], [], []
     material_index = {name: i for i, name in enumerate(MATERIALS)}
@@ -104,9 +117,9 @@ def main():
             "max": [max(p[i] for p in positions) for i in range(3)],
         })
         accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        index = len(MATERIALS) if glass and name == "tall_block" else material_index[material]
         meshes.append({"name": name, "primitives": [{
-            "attributes": {"POSITION": len(accessors) - 2}, "indices": len(accessors) - 1,
-            "material": material_index[material]}]})
+            "attributes": {"POSITION": len(accessors) - 2}, "indices": len(accessors) - 1, "material": index}]})
         nodes.append({"name": name, "mesh": len(meshes) - 1})
 
     # Camera at (278, 273, -800) mm looking down +z: the glTF camera looks down its -Z, so the
@@ -125,12 +138,16 @@ def main():
             m["emissiveFactor"] = [c / peak for c in LIGHT_RADIANCE]
             m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": peak}
         materials.append(m)
+    extensions = ["KHR_materials_emissive_strength", "KHR_materials_ior"]
+    if glass:
+        materials.append(TINTED_GLASS)
+        extensions += ["KHR_materials_transmission", "KHR_materials_volume"]
 
-    gltf = {
+    return {
         "asset": {"version": "2.0", "generator": "prism scenes/cornell-box/generate.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_ior"],
+        "extensionsUsed": extensions,
         "scene": 0,
-        "scenes": [{"name": "cornell-box", "nodes": list(range(len(nodes)))}],
+        "scenes": [{"name": "cornell-glass" if glass else "cornell-box", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
         "meshes": meshes,
         "materials": materials,
@@ -141,9 +158,13 @@ def main():
         "buffers": [{"byteLength": len(blob),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
     }
-    out = Path(__file__).with_name("cornell-box.gltf")
-    out.write_text(json.dumps(gltf, indent=1) + "\n")
-    print(f"wrote {out} ({len(meshes)} meshes, {sum(len(s[2]) * 2 for s in SURFACES)} triangles)")
+
+
+def main():
+    here = Path(__file__).parent
+    for glass, out in ((False, here / "cornell-box.gltf"), (True, here.parent / "cornell-glass" / "cornell-glass.gltf")):
+        out.write_text(json.dumps(build(glass), indent=1) + "\n")
+        print(f"wrote {out} ({sum(len(s[2]) * 2 for s in SURFACES)} triangles)")
 
 
 if __name__ == "__main__":

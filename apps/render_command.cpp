@@ -102,8 +102,8 @@ int render(const RenderOptions& o) {
     throw InputError(o.scene, "", e.what());
   }
   if (scene->emitters().empty() && !o.quiet)
-    fmt::print(stderr, "prism: warning: the scene has no emitting surfaces, so its colour channels render black "
-                       "(environment and punctual lights are not supported yet; alpha still shows coverage)\n");
+    fmt::print(stderr, "prism: warning: the scene has no lights (emitting surfaces or punctual lights), so its colour "
+                       "channels render black (environment lights are not supported yet; alpha still shows coverage)\n");
   const Camera camera(camera_desc, settings.width, settings.height);
   Film film(settings.width, settings.height);
   RenderProgress progress;

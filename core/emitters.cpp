@@ -4,6 +4,7 @@
 
 #include "core/constants.h"
 #include "core/frame.h"
+#include "core/punctual_light.h"
 #include "core/sampling.h"
 #include "core/spawn.h"
 #include "core/sphere_geometry.h"
@@ -86,18 +87,31 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
     emitters_.push_back(e);
     power.push_back(double(luminance(mean_emission(desc, mat))) * (mat.double_sided ? 2.0 : 1.0) * e.area * kPi);
   }
+  const Bounds3 bounds = scene_bounds(desc);
+  const float radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.diagonal());
+  for (const PunctualLightDesc& l : desc.lights) power.push_back(punctual_power(l, radius));
   pick_ = Distribution1D(power);
-  if (pick_.size() == 0) emitters_.clear();  // nothing with positive power: no lights to sample
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
-  if (emitters_.empty()) return -1;
+  if (prim_emitter_base_.empty()) return -1;
   return prim_emitter_base_[instance_prim_base_[instance] + primitive];
 }
 
 EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
-  if (emitters_.empty()) return {};
+  if (pick_.size() == 0) return {};
   const size_t i = pick_.sample(u_pick);
+  if (i >= emitters_.size()) {
+    const PunctualIncidence in = punctual_incidence(desc_->lights[i - emitters_.size()], ref);
+    EmitterSample s;
+    s.delta = true;
+    s.emitter = static_cast<int>(i);
+    s.pdf = pick_.pmf(i);
+    s.wi = in.wi;
+    s.distance = in.distance;
+    s.irradiance = in.irradiance;
+    return s;
+  }
   const Emitter& e = emitters_[i];
   EmitterSample s = e.sphere ? sample_sphere(e, ref, u) : sample_triangle(e, u);
   s.emitter = static_cast<int>(i);
@@ -108,7 +122,7 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
 }
 
 float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const {
-  if (index < 0 || index >= static_cast<int>(emitters_.size())) return 0;
+  if (index < 0 || index >= static_cast<int>(emitters_.size()) || pick_.size() == 0) return 0;
   const Emitter& e = emitters_[index];
   float pdf;
   if (e.sphere) {

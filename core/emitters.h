@@ -1,4 +1,5 @@
-// Emitters: every emissive triangle and sphere as an area light, chosen in proportion to emitted power.
+// Emitters: every light of a scene (emissive triangles and spheres as area lights, and punctual
+// lights), chosen in proportion to emitted power.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,13 @@ struct EmitterSample {
   Vec2 uv;       // texture coordinates at p, for emissive textures
   int material = -1;
   int emitter = -1;
-  float pdf = 0;  // solid-angle density at the reference point, including the choice of emitter
+  // Area lights: solid-angle density at the reference point, including the choice of emitter.
+  // Punctual lights: the probability of choosing this light.
+  float pdf = 0;
+  bool delta = false;  // a punctual light: no surface to hit, no MIS
+  Vec3 wi;             // punctual: unit direction toward the light
+  float distance = 0;  // punctual: to the light (+inf for directional)
+  Rgb irradiance;      // punctual: what arrives at a surface facing the light
 };
 
 class Emitters {
@@ -27,8 +34,8 @@ class Emitters {
   // proportion to their power: area x pi x the luminance of mean_emission (x2 if double-sided).
   explicit Emitters(const SceneDesc& desc);
 
-  bool empty() const { return emitters_.empty(); }
-  size_t size() const { return emitters_.size(); }
+  bool empty() const { return pick_.size() == 0; }
+  size_t size() const { return emitters_.size(); }  // area emitters (triangles and spheres)
 
   // Samples a point on an emitter for shading point `ref`; pdf 0 when nothing can be sampled.
   EmitterSample sample(const Vec3& ref, float u_pick, Vec2 u) const;
@@ -61,6 +68,7 @@ class Emitters {
   std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;
+  // Punctual lights follow the area emitters in pick_: light k is item size() + k.
 };
 
 // Mean of a material's emitted radiance over its texture (factor x strength x mean texel).

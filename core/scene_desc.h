@@ -95,6 +95,23 @@ struct SphereDesc {
   int material = -1;
 };
 
+// A KHR_lights_punctual light placed in the world. Units (the one place they are converted):
+// prism's radiance unit is the nit (cd/m^2), so a point or spot light's intensity in candela is
+// its radiant intensity as is (irradiance I / d^2 in lux, reflected radiance rho E / pi in nits),
+// and a directional light's intensity in lux is the irradiance it delivers to a surface facing
+// it. `color x intensity` is stored; no 683 lm/W factor is applied anywhere.
+enum class LightType { Point, Spot, Directional };
+
+struct PunctualLightDesc {
+  std::string name;
+  LightType type = LightType::Point;
+  Vec3 position;            // point and spot
+  Vec3 direction{0, 0, -1};  // spot and directional: where the light shines (the node's -Z)
+  Rgb intensity{1, 1, 1};   // candela (point, spot) or lux (directional), times colour
+  float range = 0;          // 0 = infinite; else the KHR_lights_punctual smooth cut-off distance
+  float cos_inner = 1, cos_outer = 0.70710678f;  // spot cone (defaults: 0 and pi/4)
+};
+
 enum class Projection { Perspective, Orthographic };
 
 // A camera placed in the world: it looks down its local -Z axis with +Y up (glTF convention).
@@ -116,7 +133,8 @@ struct SceneFeatures {
   bool spheres = false;
   bool instancing = false;  // some mesh is placed more than once
   bool textures = false;
-  bool emitters = false;
+  bool emitters = false;          // emissive surfaces
+  bool punctual_lights = false;
   bool transmission = false;     // some material transmits light
   bool absorbing_media = false;  // some volume absorbs
 };
@@ -130,6 +148,7 @@ struct SceneDesc {
   std::vector<InstanceDesc> instances;
   std::vector<SphereDesc> spheres;
   std::vector<CameraDesc> cameras;  // in node order; the first is the default
+  std::vector<PunctualLightDesc> lights;
 
   // The material for index `m`, or the glTF default material for -1.
   const MaterialDesc& material(int m) const;

@@ -1,6 +1,7 @@
 #include "integrators/path_integrator.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/spawn.h"
 #include "integrators/medium_stack.h"
@@ -8,6 +9,46 @@
 #include "materials/medium.h"
 
 namespace prism {
+
+// Light arriving at `hit` from one sampled light, through the BSDF, unoccluded, attenuated by the
+// medium on the light's side of the surface, weighted by MIS against BSDF sampling (area lights).
+Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
+                                 const MaterialDesc& material, bool from_front, float u_pick, Vec2 u_point,
+                                 RayCounters& counters) const {
+  const SceneDesc& desc = scene.desc();
+  const EmitterSample ls = scene.emitters().sample(hit.p, u_pick, u_point);
+  if (!(ls.pdf > 0)) return {};
+  Vec3 wi;
+  float dist;
+  Rgb incident;
+  if (ls.delta) {
+    wi = ls.wi;
+    dist = ls.distance;
+    incident = ls.irradiance;
+  } else {
+    const Vec3 to_light = ls.p - hit.p;
+    dist = length(to_light);
+    wi = to_light / dist;
+    incident = emitted_radiance(desc, ls.material, ls.uv, ls.n, -wi);
+  }
+  const Rgb f = bsdf.eval(wi);
+  if (is_black(incident) || is_black(f)) return {};
+  ++counters.shadow;
+  Ray shadow;
+  if (ls.delta) {
+    shadow = spawn_ray(hit.p, hit.p_error, hit.ng, wi);
+    shadow.t_max = std::isinf(dist) ? dist : dist * (1.0f - kShadowEpsilon);
+  } else {
+    shadow = spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
+  }
+  if (scene.occluded(shadow)) return {};
+  // The shadow ray travels in the medium on wi's side of the surface.
+  MediumStack beyond = media;
+  if ((dot(wi, hit.ng) > 0) != from_front) beyond.cross(material, hit.material, from_front);
+  const Rgb tr = beer_lambert(beyond.sigma_a(), dist);
+  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf.pdf(wi));
+  return f * incident * tr * (weight / ls.pdf);
+}
 
 // Each bounce draws, in order: emitter pick (1D), point on the emitter (2D), BSDF lobe (1D) and
 // direction (2D), then the Russian-roulette decision (1D) once it applies.
@@ -48,29 +89,11 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
     const bool from_front = dot(wo, hit.ng) > 0;
     const Bsdf bsdf = make_bsdf(desc, hit, wo, media.interface_eta(material, hit.material, from_front));
 
-    // Next-event estimation: one point on one emitter, chosen by power.
+    // Next-event estimation: one light chosen by power; a point on it for area lights.
     if (!emitters.empty() && !bsdf.is_delta()) {
       const float u_pick = sampler.next_1d();
       const Vec2 u_point = sampler.next_2d();
-      const EmitterSample ls = emitters.sample(hit.p, u_pick, u_point);
-      if (ls.pdf > 0) {
-        const Vec3 to_light = ls.p - hit.p;
-        const float dist = length(to_light);
-        const Vec3 wi = to_light / dist;
-        const Rgb Le = emitted_radiance(desc, ls.material, ls.uv, ls.n, -wi);
-        const Rgb f = bsdf.eval(wi);
-        if (!is_black(Le) && !is_black(f)) {
-          ++counters.shadow;
-          const Ray shadow = spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
-          if (!scene.occluded(shadow)) {
-            // The shadow ray travels in the medium on wi's side of the surface.
-            MediumStack beyond = media;
-            if ((dot(wi, hit.ng) > 0) != from_front) beyond.cross(material, hit.material, from_front);
-            const Rgb tr = beer_lambert(beyond.sigma_a(), dist);
-            L += beta * f * Le * tr * (power_heuristic(ls.pdf, bsdf.pdf(wi)) / ls.pdf);
-          }
-        }
-      }
+      L += beta * direct_light(scene, hit, bsdf, media, material, from_front, u_pick, u_point, counters);
     }
 
     const float u_lobe = sampler.next_1d();

@@ -2,6 +2,8 @@
 #pragma once
 
 #include "core/integrator.h"
+#include "integrators/medium_stack.h"
+#include "materials/bsdf.h"
 
 namespace prism {
 
@@ -15,6 +17,10 @@ class PathIntegrator final : public Integrator {
                     RayCounters& counters) const override;
 
  private:
+  Rgb direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
+                   const MaterialDesc& material, bool from_front, float u_pick, Vec2 u_point,
+                   RayCounters& counters) const;
+
   int max_depth_;
   int rr_start_depth_;
 };

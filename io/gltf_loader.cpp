@@ -19,7 +19,8 @@ namespace prism {
 
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
-                                                      "KHR_materials_ior", "KHR_materials_volume"};
+                                                      "KHR_materials_ior", "KHR_materials_volume",
+                                                      "KHR_lights_punctual"};
   return kSupported;
 }
 
@@ -63,6 +64,8 @@ class Converter {
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (auto& [node, cam] : cameras_by_node_) desc_.cameras.push_back(std::move(cam));
     if (desc_.instances.empty()) diag_.warn("the scene has no triangle meshes");
+    if (!model_.lights.empty() && desc_.lights.empty())
+      diag_.warn("KHR_lights_punctual lights are defined but no node of the scene places one");
     return std::move(desc_);
   }
 
@@ -85,9 +88,6 @@ class Converter {
     if (!model_.animations.empty())
       diag_.warn(std::to_string(model_.animations.size()) + " animations ignored: the scene renders at rest");
     if (!model_.skins.empty()) diag_.warn(std::to_string(model_.skins.size()) + " skins ignored: meshes render unskinned");
-    if (!model_.lights.empty())
-      diag_.warn("KHR_lights_punctual: " + std::to_string(model_.lights.size()) +
-                 " punctual lights are not rendered yet (emissive surfaces are)");
   }
 
   // The nodes to start from: the default scene's, else scene 0's, else every parentless node.
@@ -169,6 +169,12 @@ class Converter {
         fail(where, "camera index " + std::to_string(node.camera) + " out of range");
       cameras_by_node_.emplace_back(index, convert_camera(node.camera, node.name, world));
     }
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
+      const tinygltf::Value& light = it->second.Get("light");
+      if (!light.IsInt() || light.GetNumberAsInt() < 0 || light.GetNumberAsInt() >= static_cast<int>(model_.lights.size()))
+        fail(where, "KHR_lights_punctual light index missing or out of range");
+      desc_.lights.push_back(convert_light(light.GetNumberAsInt(), world));
+    }
     for (int child : node.children) visit(child, world, depth + 1);
     on_path_.erase(index);
   }
@@ -201,6 +207,39 @@ class Converter {
       fail(where, "unknown camera type '" + c.type + "'");
     }
     return cam;
+  }
+
+  PunctualLightDesc convert_light(int index, const Transform& world) const {
+    const tinygltf::Light& l = model_.lights[index];
+    const std::string where = quoted_name("KHR_lights_punctual light", index, l.name);
+    PunctualLightDesc out;
+    out.name = l.name;
+    Rgb colour(1.0f);
+    if (l.color.size() == 3) colour = Rgb(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+    if (!is_finite(colour) || min(colour, Rgb(0.0f)) != Rgb(0.0f)) fail(where, "color must be finite and non-negative");
+    if (!(l.intensity >= 0 && std::isfinite(l.intensity))) fail(where, "intensity must be finite and non-negative");
+    out.intensity = colour * float(l.intensity);
+    if (!(l.range >= 0 && std::isfinite(l.range))) fail(where, "range must be positive (or absent)");
+    out.range = float(l.range);
+    out.position = world.point(Vec3(0, 0, 0));
+    const Vec3 dir = world.vector(Vec3(0, 0, -1));
+    if (!(length(dir) > 0)) fail(where, "its node's transform collapses the light direction");
+    out.direction = normalize(dir);
+    if (l.type == "point") {
+      out.type = LightType::Point;
+    } else if (l.type == "directional") {
+      out.type = LightType::Directional;
+    } else if (l.type == "spot") {
+      out.type = LightType::Spot;
+      const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+      if (!(inner >= 0 && inner < outer && outer <= 1.5707963267948966))
+        fail(where, "spot angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+      out.cos_inner = float(std::cos(inner));
+      out.cos_outer = float(std::cos(outer));
+    } else {
+      fail(where, "unknown light type '" + l.type + "'");
+    }
+    return out;
   }
 
   int scene_mesh(int gltf_mesh) {

@@ -30,10 +30,16 @@ int main(int argc, char** argv) {
   cmd->add_option("--max-depth", render.settings.max_depth,
                   "Maximum bounces; 0 renders only emitters seen directly (default 8)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-diffuse-depth", render.settings.max_diffuse_depth,
+                  "Maximum diffuse and glossy bounces within --max-depth; 0 = only direct light on them (default: "
+                  "no separate limit)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", render.settings.seed, "Random seed; the same seed gives the same image bits (default 0)");
   cmd->add_option("--threads", render.settings.threads, "Worker threads; 0 = all cores (default 0). The image does not depend on it")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--integrator", render.settings.integrator, "Integrator: path (default)");
+  cmd->add_option("--integrator", render.settings.integrator,
+                  "Integrator: path (default; Monte Carlo path tracing) or whitted (classic recursive ray tracing: "
+                  "punctual lights, mirrors, glass)");
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 

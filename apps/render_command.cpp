@@ -123,6 +123,7 @@ int render(const RenderOptions& o) {
       {"prism/integrator", settings.integrator},
       {"prism/spp", settings.spp},
       {"prism/maxDepth", settings.max_depth},
+      {"prism/maxDiffuseDepth", settings.max_diffuse_depth},
       {"prism/rrStartDepth", settings.rr_start_depth},
       {"prism/seed", std::to_string(settings.seed)},
       {"prism/sampler", std::string("independent")},

@@ -11,6 +11,8 @@ struct RenderSettings {
   int width = 0, height = 0;   // 0 = from the camera's aspect ratio (see default_resolution)
   int spp = 64;                // samples per pixel
   int max_depth = 8;           // bounces; 0 = emitted light seen directly only
+  int max_diffuse_depth = -1;  // non-delta (diffuse and glossy) bounces; -1 = no limit of its own,
+                               // 0 = direct light only on such surfaces (mirrors and glass go on)
   int rr_start_depth = 3;      // Russian roulette from this bounce on
   uint64_t seed = 0;
   int tile_size = 16;
@@ -21,7 +23,7 @@ struct RenderSettings {
 
 // Settings given by a job file or on the command line; unset fields leave the settings alone.
 struct RenderSettingsOverride {
-  std::optional<int> width, height, spp, max_depth, threads;
+  std::optional<int> width, height, spp, max_depth, max_diffuse_depth, threads;
   std::optional<uint64_t> seed;
   std::optional<std::string> camera, integrator;
 
@@ -30,6 +32,7 @@ struct RenderSettingsOverride {
     if (height) s.height = *height;
     if (spp) s.spp = *spp;
     if (max_depth) s.max_depth = *max_depth;
+    if (max_diffuse_depth) s.max_diffuse_depth = *max_diffuse_depth;
     if (threads) s.threads = *threads;
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;

@@ -65,6 +65,8 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
   bool prev_delta = true;   // the camera ray counts as a delta event: no MIS for what it sees
   Vec3 prev_p;
   MediumStack media;
+  int diffuse_depth = 0;
+  bool last_vertex = false;  // the diffuse-bounce limit is reached: only emission (MIS) is left
 
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
@@ -83,7 +85,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
         L += beta * Le * w;
       }
     }
-    if (depth >= max_depth_) break;
+    if (depth >= max_depth_ || last_vertex) break;
 
     const MaterialDesc& material = desc.material(hit.material);
     const bool from_front = dot(wo, hit.ng) > 0;
@@ -102,6 +104,9 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
     beta *= bs->f_cos / bs->pdf;
     prev_bsdf_pdf = bs->pdf;
     prev_delta = bs->delta;
+    // Past the diffuse limit the sampled ray still finds the emitter it hits (its MIS half of
+    // direct lighting), then the path ends.
+    if (!bs->delta && max_diffuse_depth_ >= 0 && ++diffuse_depth > max_diffuse_depth_) last_vertex = true;
     prev_p = hit.p;
     if (bs->transmission) {
       media.cross(material, hit.material, from_front);

@@ -10,8 +10,9 @@ namespace prism {
 class PathIntegrator final : public Integrator {
  public:
   // max_depth: bounces (0 = directly visible emission only); Russian roulette starts at
-  // bounce rr_start_depth.
-  PathIntegrator(int max_depth, int rr_start_depth) : max_depth_(max_depth), rr_start_depth_(rr_start_depth) {}
+  // bounce rr_start_depth; max_diffuse_depth limits non-delta bounces (-1: no limit of its own).
+  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1)
+      : max_depth_(max_depth), rr_start_depth_(rr_start_depth), max_diffuse_depth_(max_diffuse_depth) {}
 
   RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                     RayCounters& counters) const override;
@@ -23,6 +24,7 @@ class PathIntegrator final : public Integrator {
 
   int max_depth_;
   int rr_start_depth_;
+  int max_diffuse_depth_;
 };
 
 }  // namespace prism

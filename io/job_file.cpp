@@ -25,7 +25,7 @@ class JobParser {
     JobFile job;
     job.path = file_;
     expect_object(root, "$");
-    warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "seed", "camera",
+    warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
                              "integrator", "materials", "spheres"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
@@ -43,6 +43,8 @@ class JobParser {
     }
     if (root.contains("spp")) job.settings.spp = int_at(root["spp"], "$.spp", 1, 1 << 30);
     if (root.contains("max_depth")) job.settings.max_depth = int_at(root["max_depth"], "$.max_depth", 0, 1 << 16);
+    if (root.contains("max_diffuse_depth"))
+      job.settings.max_diffuse_depth = int_at(root["max_diffuse_depth"], "$.max_diffuse_depth", 0, 1 << 16);
     if (root.contains("seed")) {
       const json& s = root["seed"];
       if (!s.is_number_unsigned() && !(s.is_number_integer() && s.get<int64_t>() >= 0))

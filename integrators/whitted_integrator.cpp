@@ -1,0 +1,101 @@
+#include "integrators/whitted_integrator.h"
+
+#include <cmath>
+
+#include "core/punctual_light.h"
+#include "core/spawn.h"
+#include "materials/dielectric_bxdf.h"
+#include "materials/fresnel.h"
+#include "materials/material_eval.h"
+#include "materials/medium.h"
+
+namespace prism {
+
+RadianceSample WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler&, RayCounters& counters) const {
+  ++counters.camera;
+  RadianceSample out;
+  out.radiance = trace(scene, camera_ray, 0, MediumStack(), counters, &out.alpha);
+  return out;
+}
+
+Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, const MediumStack& media,
+                             RayCounters& counters, float* alpha) const {
+  SurfaceHit hit;
+  if (!scene.intersect(ray, hit, depth == 0)) return {};
+  if (alpha) *alpha = 1.0f;
+  const SceneDesc& desc = scene.desc();
+  const Vec3 wo = -normalize(ray.dir);
+  const Rgb absorbed = beer_lambert(media.sigma_a(), hit.t * length(ray.dir));
+  Rgb L = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
+  if (depth >= max_depth_) return L * absorbed;
+
+  const MaterialDesc& material = desc.material(hit.material);
+  const SurfaceParams p = surface_params(desc, material, hit.uv);
+  const bool from_front = dot(wo, hit.ng) > 0;
+  const bool volume = p.transmission > 0 && !p.thin_walled;
+  const float eta = media.interface_eta(material, hit.material, from_front);
+  // Opaque and thin surfaces are two-sided: face the normals toward wo.
+  Vec3 ng = hit.ng, ns = dot(hit.ns, hit.ng) < 0 ? -hit.ns : hit.ns;
+  if (!from_front && !volume) {
+    ng = -ng;
+    ns = -ns;
+  }
+  const Vec3 n_wo = dot(wo, ns) < 0 ? -ns : ns;  // reflection happens on wo's side, inside glass too
+  const float cos_o = dot(wo, n_wo);
+  const float m = p.metallic, t = p.transmission;
+
+  // Fresnel-weighted shares of the mirror direction and the transmitted one, from the same
+  // smooth interfaces the path tracer samples (a thin sheet reflects from both faces).
+  const Vec3 n_front = dot(hit.ns, hit.ng) < 0 ? -hit.ns : hit.ns;
+  const DielectricBxdf::Mode mode = volume ? DielectricBxdf::Mode::Volume
+                                           : (t > 0 ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::ReflectionOnly);
+  const float R = DielectricBxdf(eta, 0.0f, Rgb(1.0f), mode).reflectance(volume ? dot(wo, n_front) : std::abs(cos_o));
+  const Rgb reflect_weight = fresnel_schlick(p.base_color, cos_o) * m + Rgb((1 - m) * R);
+  const Rgb transmit_weight = p.base_color * ((1 - m) * t * (1 - R));
+  const float diffuse_weight = (1 - m) * (1 - t) * (1 - R);
+
+  // Diffuse: direct light from punctual lights, with shadow rays.
+  if (diffuse_weight > 0 && dot(wo, ns) > 0) {
+    const Rgb f = p.base_color * (diffuse_weight * kInvPi);
+    for (const PunctualLightDesc& light : desc.lights) {
+      const PunctualIncidence in = punctual_incidence(light, hit.p);
+      const float cos_i = dot(in.wi, ns);
+      if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
+      Ray shadow = spawn_ray(hit.p, hit.p_error, ng, in.wi);
+      shadow.t_max = std::isinf(in.distance) ? in.distance : in.distance * (1.0f - kShadowEpsilon);
+      ++counters.shadow;
+      if (!scene.occluded(shadow)) L += f * in.irradiance * cos_i;
+    }
+  }
+
+  // Mirror reflection (metal, the dielectric layer, and glass's reflected share).
+  if (!is_black(reflect_weight) && cos_o > 0) {
+    const Vec3 wr = reflect(wo, n_wo);
+    if (dot(wr, ng) * dot(wo, ng) > 0) {
+      ++counters.extension;
+      L += reflect_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wr), depth + 1, media, counters, nullptr);
+    }
+  }
+
+  // Transmission: straight through a thin sheet, refracted into or out of a volume.
+  if (!is_black(transmit_weight)) {
+    if (!volume) {
+      ++counters.extension;
+      L += transmit_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, -wo), depth + 1, media, counters, nullptr);
+    } else {
+      const Vec3 n = from_front ? n_front : -n_front;  // on wo's side
+      const float etap = from_front ? eta : 1.0f / eta;
+      Vec3 wt;
+      if (R < 1.0f && refract(wo, n, etap, wt) && dot(wt, hit.ng) * dot(wo, hit.ng) < 0) {
+        MediumStack inside = media;
+        inside.cross(material, hit.material, from_front);
+        ++counters.extension;
+        L += transmit_weight * (1.0f / (etap * etap)) *
+             trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wt), depth + 1, inside, counters, nullptr);
+      }
+    }
+  }
+  return L * absorbed;
+}
+
+}  // namespace prism

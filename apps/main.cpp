@@ -40,6 +40,13 @@ int main(int argc, char** argv) {
   cmd->add_option("--integrator", render.settings.integrator,
                   "Integrator: path (default; Monte Carlo path tracing) or whitted (classic recursive ray tracing: "
                   "punctual lights, mirrors, glass)");
+  cmd->add_option("--env", render.env,
+                  "Environment light: an equirectangular map (EXR/HDR linear, PNG/JPEG sRGB; +Y up, the map's centre "
+                  "toward -Z), or R,G,B (or one value) for a constant sky, in nits");
+  cmd->add_option("--env-intensity", render.env_intensity, "Multiplier for the environment (default 1)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--env-rotation", render.env_rotation,
+                  "Rotation of the environment about +Y in degrees, counter-clockwise seen from above (default 0)");
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 

@@ -65,9 +65,26 @@ std::string si(double v) {
   return fmt::format("{:.0f}", v);
 }
 
+// --env takes a map's path, or one or three numbers for a constant sky.
+EnvironmentSpec environment_option(const RenderOptions& o) {
+  EnvironmentSpec spec;
+  if (o.env) {
+    float r, g, b;
+    char extra;
+    if (std::sscanf(o.env->c_str(), "%f,%f,%f%c", &r, &g, &b, &extra) == 3) spec.color = Rgb(r, g, b);
+    else if (std::sscanf(o.env->c_str(), "%f%c", &r, &extra) == 1) spec.color = Rgb(r);
+    else spec.map = *o.env;
+    if (spec.color && !(min(*spec.color, Rgb(0.0f)) == Rgb(0.0f) && is_finite(*spec.color)))
+      throw UsageError("--env: a constant sky needs finite non-negative numbers, got '" + *o.env + "'");
+  }
+  if (o.env_intensity) spec.intensity = *o.env_intensity;
+  if (o.env_rotation) spec.rotation_degrees = *o.env_rotation;
+  return spec;
+}
+
 int render(const RenderOptions& o) {
   Diagnostics diag;
-  LoadedScene loaded = load_scene_source(o.scene, diag);
+  LoadedScene loaded = load_scene_source(o.scene, diag, environment_option(o));
   if (!o.quiet)
     for (const auto& w : diag.lines()) fmt::print(stderr, "prism: warning: {}\n", w);
 
@@ -103,7 +120,7 @@ int render(const RenderOptions& o) {
   }
   if (scene->emitters().empty() && !o.quiet)
     fmt::print(stderr, "prism: warning: the scene has no lights (emitting surfaces or punctual lights), so its colour "
-                       "channels render black (environment lights are not supported yet; alpha still shows coverage)\n");
+                       "channels render black (give one with --env; alpha still shows coverage)\n");
   const Camera camera(camera_desc, settings.width, settings.height);
   Film film(settings.width, settings.height);
   RenderProgress progress;
@@ -116,7 +133,7 @@ int render(const RenderOptions& o) {
   }
 
   const std::vector<float> rgba = film.resolve_rgba();
-  const std::vector<ExrAttribute> attributes = {
+  std::vector<ExrAttribute> attributes = {
       {"prism/version", std::string(PRISM_VERSION)},
       {"prism/scene", o.scene},
       {"prism/camera", camera_desc.name},
@@ -129,6 +146,11 @@ int render(const RenderOptions& o) {
       {"prism/sampler", std::string("independent")},
       {"prism/nonFiniteSamples", double(stats.nonfinite_samples)},
   };
+  if (scene->desc().environment.present) {
+    attributes.push_back({"prism/environment", scene->desc().environment.source.empty()
+                                                   ? std::string("constant")
+                                                   : scene->desc().environment.source});
+  }
   const int replaced = write_exr(output, settings.width, settings.height, rgba, attributes);
   if (preview) write_png_preview(*preview, settings.width, settings.height, rgba);
 

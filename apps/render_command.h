@@ -15,6 +15,8 @@ struct RenderOptions {
   std::optional<std::string> output, preview;
   std::optional<std::string> resolution;  // "WxH", parsed into settings
   RenderSettingsOverride settings;
+  std::optional<std::string> env;  // a map path, or "R,G,B" / "V" for a constant sky
+  std::optional<float> env_intensity, env_rotation;
   bool quiet = false;
 };
 

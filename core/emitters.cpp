@@ -1,6 +1,7 @@
 #include "core/emitters.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/constants.h"
 #include "core/frame.h"
@@ -90,7 +91,18 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
   const Bounds3 bounds = scene_bounds(desc);
   const float radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.diagonal());
   for (const PunctualLightDesc& l : desc.lights) power.push_back(punctual_power(l, radius));
+  environment_ = EnvironmentLight(desc);
+  if (environment_.present()) {
+    // What a disc of the scene's size receives from the sky: pi r^2 x pi L.
+    environment_index_ = static_cast<int>(power.size());
+    power.push_back(double(kPi) * kPi * double(radius) * radius * environment_.mean_luminance());
+  }
   pick_ = Distribution1D(power);
+}
+
+float Emitters::environment_pdf(const Vec3& w) const {
+  if (environment_index_ < 0) return 0;
+  return pick_.pmf(size_t(environment_index_)) * environment_.pdf(w);
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
@@ -101,6 +113,17 @@ int Emitters::triangle_base(int instance, int primitive) const {
 EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
   if (pick_.size() == 0) return {};
   const size_t i = pick_.sample(u_pick);
+  if (static_cast<int>(i) == environment_index_) {
+    EmitterSample s;
+    s.infinite = true;
+    s.emitter = static_cast<int>(i);
+    float pdf_dir = 0;
+    s.wi = environment_.sample(u, pdf_dir);
+    s.pdf = pick_.pmf(i) * pdf_dir;
+    s.distance = std::numeric_limits<float>::infinity();
+    s.incident = environment_.radiance(s.wi);
+    return s;
+  }
   if (i >= emitters_.size()) {
     const PunctualIncidence in = punctual_incidence(desc_->lights[i - emitters_.size()], ref);
     EmitterSample s;
@@ -109,7 +132,7 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
     s.pdf = pick_.pmf(i);
     s.wi = in.wi;
     s.distance = in.distance;
-    s.irradiance = in.irradiance;
+    s.incident = in.irradiance;
     return s;
   }
   const Emitter& e = emitters_[i];

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/distribution_1d.h"
+#include "core/environment_light.h"
 #include "core/scene_desc.h"
 
 namespace prism {
@@ -21,10 +22,12 @@ struct EmitterSample {
   // Area lights: solid-angle density at the reference point, including the choice of emitter.
   // Punctual lights: the probability of choosing this light.
   float pdf = 0;
-  bool delta = false;  // a punctual light: no surface to hit, no MIS
-  Vec3 wi;             // punctual: unit direction toward the light
-  float distance = 0;  // punctual: to the light (+inf for directional)
-  Rgb irradiance;      // punctual: what arrives at a surface facing the light
+  bool delta = false;     // a punctual light: no surface to hit, no MIS
+  bool infinite = false;  // the environment: nothing to hit but the sky
+  Vec3 wi;                // punctual and environment: unit direction toward the light
+  float distance = 0;     // punctual: to the light (+inf for directional and environment)
+  // Punctual: irradiance at a surface facing the light. Environment: radiance along -wi.
+  Rgb incident;
 };
 
 class Emitters {
@@ -46,6 +49,9 @@ class Emitters {
   int triangle_base(int instance, int primitive) const;
   // Emitter index of sphere `s`, or -1.
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
+  const EnvironmentLight& environment() const { return environment_; }
+  // Density of sample() choosing direction w toward the environment, including the choice.
+  float environment_pdf(const Vec3& w) const;
   float pick_probability(int index) const { return pick_.pmf(index); }
 
  private:
@@ -68,7 +74,10 @@ class Emitters {
   std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;
-  // Punctual lights follow the area emitters in pick_: light k is item size() + k.
+  EnvironmentLight environment_;
+  // Punctual lights follow the area emitters in pick_ (light k is item size() + k); the
+  // environment, when present, is the last item.
+  int environment_index_ = -1;
 };
 
 // Mean of a material's emitted radiance over its texture (factor x strength x mean texel).

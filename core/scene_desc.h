@@ -112,6 +112,17 @@ struct PunctualLightDesc {
   float cos_inner = 1, cos_outer = 0.70710678f;  // spot cone (defaults: 0 and pi/4)
 };
 
+// Light arriving from infinitely far away in every direction: a constant colour, or an
+// equirectangular (latitude-longitude) map: +Y up, the image's centre column looking down -Z,
+// u growing toward +X (counter-clockwise seen from above), row 0 at the zenith.
+struct EnvironmentDesc {
+  bool present = false;
+  Rgb color{1, 1, 1};    // radiance in nits, or the map's multiplier
+  int image = -1;        // index into SceneDesc::images (linear), or -1 for a constant colour
+  float rotation = 0;    // radians about +Y, counter-clockwise seen from above
+  std::string source;    // the map's file, for messages and metadata
+};
+
 enum class Projection { Perspective, Orthographic };
 
 // A camera placed in the world: it looks down its local -Z axis with +Y up (glTF convention).
@@ -135,6 +146,7 @@ struct SceneFeatures {
   bool textures = false;
   bool emitters = false;          // emissive surfaces
   bool punctual_lights = false;
+  bool environment = false;
   bool transmission = false;     // some material transmits light
   bool absorbing_media = false;  // some volume absorbs
 };
@@ -149,6 +161,7 @@ struct SceneDesc {
   std::vector<SphereDesc> spheres;
   std::vector<CameraDesc> cameras;  // in node order; the first is the default
   std::vector<PunctualLightDesc> lights;
+  EnvironmentDesc environment;
 
   // The material for index `m`, or the glTF default material for -1.
   const MaterialDesc& material(int m) const;

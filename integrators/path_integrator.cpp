@@ -21,10 +21,10 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
   Vec3 wi;
   float dist;
   Rgb incident;
-  if (ls.delta) {
+  if (ls.delta || ls.infinite) {
     wi = ls.wi;
     dist = ls.distance;
-    incident = ls.irradiance;
+    incident = ls.incident;
   } else {
     const Vec3 to_light = ls.p - hit.p;
     dist = length(to_light);
@@ -35,7 +35,7 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
   if (is_black(incident) || is_black(f)) return {};
   ++counters.shadow;
   Ray shadow;
-  if (ls.delta) {
+  if (ls.delta || ls.infinite) {
     shadow = spawn_ray(hit.p, hit.p_error, hit.ng, wi);
     shadow.t_max = std::isinf(dist) ? dist : dist * (1.0f - kShadowEpsilon);
   } else {
@@ -70,7 +70,17 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
 
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
-    if (!scene.intersect(ray, hit, depth == 0)) break;
+    if (!scene.intersect(ray, hit, depth == 0)) {
+      // Escaped to the sky: the environment, MIS-weighted against light sampling after a
+      // non-delta bounce; inside an absorbing medium the infinite segment absorbs completely.
+      const EnvironmentLight& env = emitters.environment();
+      if (env.present()) {
+        const Vec3 w = normalize(ray.dir);
+        const float weight = prev_delta ? 1.0f : power_heuristic(prev_bsdf_pdf, emitters.environment_pdf(w));
+        L += beta * env.radiance(w) * beer_lambert(media.sigma_a(), kInfinity) * weight;
+      }
+      break;
+    }
     if (depth == 0) out.alpha = 1.0f;
     beta *= beer_lambert(media.sigma_a(), hit.t * length(ray.dir));  // Beer-Lambert along the segment
     const Vec3 wo = -normalize(ray.dir);

@@ -21,7 +21,10 @@ RadianceSample WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, 
 Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, const MediumStack& media,
                              RayCounters& counters, float* alpha) const {
   SurfaceHit hit;
-  if (!scene.intersect(ray, hit, depth == 0)) return {};
+  if (!scene.intersect(ray, hit, depth == 0)) {
+    const EnvironmentLight& env = scene.emitters().environment();
+    return env.present() ? env.radiance(normalize(ray.dir)) * beer_lambert(media.sigma_a(), kInfinity) : Rgb{};
+  }
   if (alpha) *alpha = 1.0f;
   const SceneDesc& desc = scene.desc();
   const Vec3 wo = -normalize(ray.dir);

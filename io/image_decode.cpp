@@ -35,6 +35,11 @@ ImageDesc read_from(OIIO::ImageInput* in, ColorSpace space, const std::string& f
   img.texels.resize(size_t(img.width) * img.height * img.channels);
   if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.texels.data()))
     throw InputError(file, element, "cannot decode image: " + in->geterror());
+  if (space == ColorSpace::Auto) {
+    const auto base = spec.format.basetype;
+    const bool is_float = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
+    space = is_float ? ColorSpace::Linear : ColorSpace::Srgb;
+  }
   if (space == ColorSpace::Srgb) {
     // Alpha is linear coverage: in 2- and 4-channel images the last channel is left as is.
     const int colour = (img.channels == 2 || img.channels == 4) ? img.channels - 1 : img.channels;

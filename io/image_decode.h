@@ -8,7 +8,8 @@
 
 namespace prism {
 
-enum class ColorSpace { Linear, Srgb };
+// Auto: float images (EXR, HDR) are linear, integer ones (PNG, JPEG) sRGB-encoded.
+enum class ColorSpace { Linear, Srgb, Auto };
 
 // Decodes an encoded image (PNG, JPEG, EXR, ... sniffed from the bytes). With ColorSpace::Srgb
 // the colour channels (not alpha) are converted from the sRGB transfer function to linear.

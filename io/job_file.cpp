@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "io/errors.h"
+#include "io/image_decode.h"
 
 namespace prism {
 
@@ -26,7 +27,7 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "materials", "spheres"});
+                             "integrator", "materials", "spheres", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
       const std::filesystem::path path(p);
@@ -61,6 +62,17 @@ class JobParser {
       const json& m = root["materials"];
       expect_object(m, "$.materials");
       for (const auto& [name, value] : m.items()) job.materials.push_back(material(name, value, "$.materials." + name));
+    }
+    if (root.contains("environment")) {
+      const json& e = root["environment"];
+      const std::string where = "$.environment";
+      expect_object(e, where);
+      warn_unknown(e, where, {"map", "color", "intensity", "rotation"});
+      if (e.contains("map")) job.environment.map = relative(string_at(e["map"], where + ".map"));
+      if (e.contains("color")) job.environment.color = vec3_at(e["color"], where + ".color", 0, 3.0e38);
+      if (e.contains("intensity")) job.environment.intensity = number_at(e["intensity"], where + ".intensity", 0, 3.0e38);
+      if (e.contains("rotation")) job.environment.rotation_degrees = number_at(e["rotation"], where + ".rotation", -1e6, 1e6);
+      if (!job.environment.present()) fail(where, "needs a \"map\" or a \"color\"");
     }
     if (root.contains("spheres")) {
       const json& list = root["spheres"];
@@ -187,6 +199,25 @@ void apply_edit(const MaterialEdit& e, MaterialDesc& m) {
 }
 
 }  // namespace
+
+void apply_environment(const EnvironmentSpec& spec, SceneDesc& scene) {
+  if (!spec.present()) return;
+  EnvironmentDesc& env = scene.environment;
+  env.present = true;
+  env.color = spec.color.value_or(Rgb(1.0f)) * spec.intensity.value_or(1.0f);
+  env.rotation = spec.rotation_degrees.value_or(0.0f) * 3.14159265358979f / 180.0f;
+  env.image = -1;
+  env.source.clear();
+  if (spec.map) {
+    ImageDesc img = read_image_file(*spec.map, ColorSpace::Auto);
+    for (float v : img.texels)
+      if (!std::isfinite(v) || v < 0)
+        throw InputError(*spec.map, "environment map", "has negative or non-finite pixels");
+    env.image = static_cast<int>(scene.images.size());
+    env.source = *spec.map;
+    scene.images.push_back(std::move(img));
+  }
+}
 
 JobFile parse_job_json(const std::string& text, const std::string& path, Diagnostics& diag) {
   json root;

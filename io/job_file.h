@@ -35,6 +35,26 @@ struct JobSphere {
   std::string material;  // a material name (from the glTF or the job), "" = default material
 };
 
+// An environment light given by a job file or the command line; unset fields keep what an
+// earlier source (job file, then command line) set.
+struct EnvironmentSpec {
+  std::optional<std::string> map;   // equirectangular image path
+  std::optional<Rgb> color;         // constant radiance (without a map) or the map's tint
+  std::optional<float> intensity;   // multiplier
+  std::optional<float> rotation_degrees;  // about +Y, counter-clockwise seen from above
+
+  bool present() const { return map || color || intensity; }
+  void override_with(const EnvironmentSpec& o) {
+    if (o.map) map = o.map;
+    if (o.color) color = o.color;
+    if (o.intensity) intensity = o.intensity;
+    if (o.rotation_degrees) rotation_degrees = o.rotation_degrees;
+  }
+};
+
+// Loads the map (if any) and sets scene.environment. Throws InputError naming the file.
+void apply_environment(const EnvironmentSpec& spec, SceneDesc& scene);
+
 struct JobFile {
   std::string path;
   std::optional<std::string> scene;  // glTF path, resolved against the job file's folder
@@ -42,6 +62,7 @@ struct JobFile {
   RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;
   std::vector<JobSphere> spheres;
+  EnvironmentSpec environment;
 };
 
 // Parses a job file. Type errors throw InputError naming the JSON path and the expected type;

@@ -9,7 +9,7 @@
 
 namespace prism {
 
-LoadedScene load_scene_source(const std::string& path, Diagnostics& diag) {
+LoadedScene load_scene_source(const std::string& path, Diagnostics& diag, const EnvironmentSpec& environment) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   LoadedScene out;
@@ -29,6 +29,9 @@ LoadedScene load_scene_source(const std::string& path, Diagnostics& diag) {
   } else {
     throw InputError(path, "", "unknown scene type '" + ext + "' (expected .gltf, .glb or a .json job file)");
   }
+  EnvironmentSpec env = out.job ? out.job->environment : EnvironmentSpec{};
+  env.override_with(environment);
+  apply_environment(env, out.scene);
   return out;
 }
 

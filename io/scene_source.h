@@ -15,7 +15,8 @@ struct LoadedScene {
   std::optional<JobFile> job;  // present when the source was a job file
 };
 
-// Loads by file type (the extension: .gltf, .glb or .json). Throws InputError.
-LoadedScene load_scene_source(const std::string& path, Diagnostics& diag);
+// Loads by file type (the extension: .gltf, .glb or .json), with the job's environment, then
+// `environment` (e.g. from the command line) over it. Throws InputError.
+LoadedScene load_scene_source(const std::string& path, Diagnostics& diag, const EnvironmentSpec& environment = {});
 
 }  // namespace prism

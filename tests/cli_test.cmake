@@ -66,3 +66,13 @@ run(0 "${PRISM}" render "${WORK_DIR}/spheres.json" -o "${WORK_DIR}/spheres.exr")
 if(NOT last_err MATCHES "no lights")
   message(FATAL_ERROR "no warning for a scene without lights: ${last_err}")
 endif()
+
+# An environment light from the command line: a constant sky, or a map that must exist.
+run(0 "${PRISM}" render "${WORK_DIR}/spheres.json" -o "${WORK_DIR}/sky.exr" --env 0.5,0.6,0.7 --env-intensity 2)
+if(last_err MATCHES "no lights")
+  message(FATAL_ERROR "a constant sky should light the scene: ${last_err}")
+endif()
+run(3 "${PRISM}" render "${WORK_DIR}/spheres.json" -o "${WORK_DIR}/sky.exr" --env "${WORK_DIR}/missing.exr")
+if(NOT last_err MATCHES "missing.exr")
+  message(FATAL_ERROR "unclear missing-map message: ${last_err}")
+endif()

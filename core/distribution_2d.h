@@ -1,0 +1,53 @@
+// Distribution2D: a piecewise-constant density over [0,1)^2 from a grid of weights, sampled by a
+// marginal distribution over rows and a conditional one within the row (pbrt-v4 §A.5.6).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "core/distribution_1d.h"
+#include "core/vec3.h"
+
+namespace prism {
+
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  // weights[row * width + column]; rows run along v, columns along u.
+  Distribution2D(const std::vector<double>& weights, int width, int height) : width_(width), height_(height) {
+    std::vector<double> row_sums(height, 0.0);
+    rows_.reserve(height);
+    for (int y = 0; y < height; ++y) {
+      std::vector<double> row(weights.begin() + ptrdiff_t(y) * width, weights.begin() + ptrdiff_t(y + 1) * width);
+      for (double w : row) row_sums[y] += w > 0 ? w : 0.0;
+      rows_.emplace_back(row);
+    }
+    marginal_ = Distribution1D(row_sums);
+  }
+
+  bool empty() const { return marginal_.size() == 0; }
+
+  // A point in [0,1)^2 and its density with respect to area in [0,1)^2.
+  Vec2 sample(Vec2 u, float& pdf) const {
+    float ry = 0, rx = 0;
+    const size_t y = marginal_.sample(u.y, &ry);
+    const Distribution1D& row = rows_[y];
+    const size_t x = row.sample(u.x, &rx);
+    pdf = float(double(marginal_.pmf(y)) * row.pmf(x) * double(width_) * height_);
+    return {(float(x) + rx) / float(width_), (float(y) + ry) / float(height_)};
+  }
+
+  float pdf(Vec2 p) const {
+    const int x = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
+    const int y = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
+    if (rows_[y].size() == 0) return 0;
+    return float(double(marginal_.pmf(y)) * rows_[y].pmf(x) * double(width_) * height_);
+  }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<Distribution1D> rows_;
+  Distribution1D marginal_;
+};
+
+}  // namespace prism

@@ -1,0 +1,97 @@
+#include "core/environment_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/constants.h"
+#include "core/sampling.h"
+
+namespace prism {
+namespace {
+
+Rgb texel(const ImageDesc& img, int x, int y) {
+  const float* t = &img.texels[(size_t(y) * img.width + x) * img.channels];
+  return img.channels >= 3 ? Rgb(t[0], t[1], t[2]) : Rgb(t[0]);
+}
+
+}  // namespace
+
+EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
+  const EnvironmentDesc& env = desc.environment;
+  present_ = env.present;
+  if (!present_) return;
+  scale_ = env.color;
+  cos_rot_ = std::cos(env.rotation);
+  sin_rot_ = std::sin(env.rotation);
+  if (env.image >= 0 && env.image < static_cast<int>(desc.images.size())) {
+    image_ = &desc.images[env.image];
+    const int w = image_->width, h = image_->height;
+    // Texels weighted by luminance and by the solid angle of their row (sin theta).
+    std::vector<double> weights(size_t(w) * h);
+    double sum = 0, solid_angle_sum = 0;
+    for (int y = 0; y < h; ++y) {
+      const double sin_t = std::sin(kPi * (y + 0.5) / h);
+      for (int x = 0; x < w; ++x) {
+        const double l = std::max(0.0f, luminance(texel(*image_, x, y) * scale_));
+        weights[size_t(y) * w + x] = l * sin_t;
+        sum += l * sin_t;
+        solid_angle_sum += sin_t;
+      }
+    }
+    mean_luminance_ = solid_angle_sum > 0 ? sum / solid_angle_sum : 0.0;
+    distribution_ = Distribution2D(weights, w, h);
+  } else {
+    mean_luminance_ = std::max(0.0f, luminance(scale_));
+  }
+  if (!(mean_luminance_ > 0)) present_ = false;  // a black sky lights nothing
+}
+
+Vec2 EnvironmentLight::direction_to_uv(const Vec3& w) const {
+  // Undo the rotation about +Y, then longitude from -Z toward +X, latitude from +Y.
+  const float x = cos_rot_ * w.x - sin_rot_ * w.z;
+  const float z = sin_rot_ * w.x + cos_rot_ * w.z;
+  const float phi = std::atan2(x, -z);  // 0 toward -Z
+  const float theta = std::acos(std::clamp(w.y, -1.0f, 1.0f));
+  return {0.5f + phi * kInvTwoPi, theta * kInvPi};
+}
+
+Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
+  const float phi = (uv.x - 0.5f) * kTwoPi, theta = uv.y * kPi;
+  const float s = std::sin(theta);
+  const float x = s * std::sin(phi), z = -s * std::cos(phi);
+  return {cos_rot_ * x + sin_rot_ * z, std::cos(theta), -sin_rot_ * x + cos_rot_ * z};
+}
+
+Rgb EnvironmentLight::radiance(const Vec3& w) const {
+  if (!present_) return {};
+  if (!image_) return scale_;
+  const Vec2 uv = direction_to_uv(w);
+  // Nearest texel: the radiance is piecewise constant exactly as the sampling density is.
+  const int x = std::clamp(static_cast<int>(uv.x * float(image_->width)), 0, image_->width - 1);
+  const int y = std::clamp(static_cast<int>(uv.y * float(image_->height)), 0, image_->height - 1);
+  return texel(*image_, x, y) * scale_;
+}
+
+Vec3 EnvironmentLight::sample(Vec2 u, float& pdf) const {
+  if (!image_) {
+    pdf = kInvFourPi;
+    return sample_uniform_sphere(u);
+  }
+  float pdf_uv = 0;
+  const Vec2 uv = distribution_.sample(u, pdf_uv);
+  const Vec3 w = uv_to_direction(uv);
+  // The density is looked up from the direction, as radiance() is: a sample on a texel edge may
+  // round into the neighbour, and both must agree on which texel that is.
+  pdf = pdf_uv > 0 ? this->pdf(w) : 0.0f;
+  return w;
+}
+
+float EnvironmentLight::pdf(const Vec3& w) const {
+  if (!present_) return 0;
+  if (!image_) return kInvFourPi;
+  const Vec2 uv = direction_to_uv(w);
+  const float sin_t = std::sin(uv.y * kPi);
+  return sin_t > 0 ? distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_t) : 0.0f;
+}
+
+}  // namespace prism

@@ -1,0 +1,38 @@
+// EnvironmentLight: radiance from infinitely far away (constant or an equirectangular map),
+// importance-sampled by luminance x sin(theta) so bright sky regions get the samples.
+#pragma once
+
+#include "core/distribution_2d.h"
+#include "core/scene_desc.h"
+
+namespace prism {
+
+class EnvironmentLight {
+ public:
+  EnvironmentLight() = default;
+  // `desc` must outlive this object.
+  explicit EnvironmentLight(const SceneDesc& desc);
+
+  bool present() const { return present_; }
+  // Radiance arriving along -w (w points from the scene toward the sky).
+  Rgb radiance(const Vec3& w) const;
+  // A direction toward the sky and its solid-angle density.
+  Vec3 sample(Vec2 u, float& pdf) const;
+  float pdf(const Vec3& w) const;
+  // Mean radiance luminance over the sphere, for choosing among lights.
+  double mean_luminance() const { return mean_luminance_; }
+
+  // Map coordinates of a direction and back (rotation included).
+  Vec2 direction_to_uv(const Vec3& w) const;
+  Vec3 uv_to_direction(Vec2 uv) const;
+
+ private:
+  const ImageDesc* image_ = nullptr;
+  Rgb scale_{1, 1, 1};
+  float cos_rot_ = 1, sin_rot_ = 0;
+  bool present_ = false;
+  Distribution2D distribution_;
+  double mean_luminance_ = 0;
+};
+
+}  // namespace prism

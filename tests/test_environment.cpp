@@ -1,0 +1,157 @@
+// Environment light: the white furnace, orientation of equirectangular maps, importance sampling
+// against its pdf, and unbiased lighting of a plane under a map with a hot spot.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "chi_square.h"
+#include "core/constants.h"
+#include "core/environment_light.h"
+#include "core/sampler.h"
+#include "core/scene.h"
+#include "integrators/path_integrator.h"
+#include "integrators/whitted_integrator.h"
+#include "io/errors.h"
+#include "io/exr_writer.h"
+#include "io/job_file.h"
+#include "gltf_writer.h"
+#include "scene_builders.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+// A 64 x 32 map: dim blue sky, a small bright warm spot at u = 0.7, v = 0.3.
+ImageDesc hot_spot_map() {
+  ImageDesc img;
+  img.width = 64;
+  img.height = 32;
+  img.channels = 3;
+  img.texels.resize(64 * 32 * 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool spot = std::abs(x - 45) <= 1 && std::abs(y - 9) <= 1;
+      const Rgb c = spot ? Rgb(400, 300, 200) : Rgb(0.2f, 0.3f, 0.6f) * (1.0f + 0.02f * float(y));
+      for (int k = 0; k < 3; ++k) img.texels[(y * 64 + x) * 3 + k] = c[k];
+    }
+  return img;
+}
+
+SceneDesc with_environment(SceneDesc desc, const Rgb& color, bool map, float rotation = 0) {
+  desc.environment.present = true;
+  desc.environment.color = color;
+  desc.environment.rotation = rotation;
+  if (map) {
+    desc.environment.image = static_cast<int>(desc.images.size());
+    desc.images.push_back(hot_spot_map());
+  }
+  return desc;
+}
+
+test::RunningStats estimate(const Scene& scene, const Integrator& integrator, const Ray& ray, int samples) {
+  IndependentSampler sampler(11);
+  RayCounters counters;
+  test::RunningStats stats;
+  for (int i = 0; i < samples; ++i) {
+    sampler.start_pixel_sample(1, 2, uint64_t(i));
+    stats.add(integrator.li(scene, ray, sampler, counters).radiance.y);
+  }
+  return stats;
+}
+
+TEST(Environment, WhiteFurnaceHidesAWhiteSphere) {
+  // Under a uniform sky of radiance 1, a convex Lambertian sphere of albedo a reflects exactly a
+  // (it sees only sky): with a = 1 it vanishes against the background.
+  for (float albedo : {1.0f, 0.5f}) {
+    SceneDesc desc;
+    test::add_sphere(desc, Vec3(0, 0, 0), 1.0f, test::add_material(desc, Rgb(albedo)));
+    const Scene scene(with_environment(std::move(desc), Rgb(1.0f), false));
+    const PathIntegrator path(50, 3);
+    const test::RunningStats s = estimate(scene, path, Ray{Vec3(0.3f, 0.2f, 5), Vec3(0, 0, -1)}, 20000);
+    EXPECT_NEAR(s.mean(), albedo, test::kSigmas * s.standard_error() + 1e-6) << albedo;
+    const test::RunningStats sky = estimate(scene, path, Ray{Vec3(3, 0, 5), Vec3(0, 0, -1)}, 10);
+    EXPECT_EQ(sky.mean(), 1.0);
+    const WhittedIntegrator whitted(8);
+    EXPECT_EQ(estimate(scene, whitted, Ray{Vec3(3, 0, 5), Vec3(0, 0, -1)}, 1).mean(), 1.0);
+  }
+}
+
+TEST(Environment, EquirectangularOrientation) {
+  SceneDesc desc = with_environment(SceneDesc{}, Rgb(1.0f), true);
+  const EnvironmentLight env(desc);
+  // The centre of the map looks down -Z, the top row is +Y, u grows toward +X.
+  EXPECT_NEAR(env.direction_to_uv(Vec3(0, 0, -1)).x, 0.5f, 1e-6f);
+  EXPECT_NEAR(env.direction_to_uv(Vec3(1, 0, 0)).x, 0.75f, 1e-6f);
+  EXPECT_NEAR(env.direction_to_uv(Vec3(0, 1, 0)).y, 0.0f, 1e-6f);
+  EXPECT_NEAR(env.direction_to_uv(Vec3(0, -1, 0)).y, 1.0f, 1e-6f);
+  // Round trip under a rotation of the sky by +90 degrees about +Y.
+  SceneDesc rotated = with_environment(SceneDesc{}, Rgb(1.0f), true, kPiOver2);
+  const EnvironmentLight r(rotated);
+  for (Vec3 w : {Vec3(0.3f, 0.5f, -0.8f), Vec3(-0.9f, 0.1f, 0.2f)}) {
+    w = normalize(w);
+    const Vec3 back = r.uv_to_direction(r.direction_to_uv(w));
+    EXPECT_NEAR(back.x, w.x, 1e-5f);
+    EXPECT_NEAR(back.z, w.z, 1e-5f);
+  }
+  // Counter-clockwise seen from above: the map's centre, toward -Z before, now faces -X.
+  EXPECT_NEAR(r.direction_to_uv(Vec3(-1, 0, 0)).x, 0.5f, 1e-5f);
+}
+
+TEST(Environment, MapSamplingMatchesItsPdf) {
+  for (float rotation : {0.0f, 0.7f}) {
+    SceneDesc desc = with_environment(SceneDesc{}, Rgb(1.0f, 0.5f, 2.0f), true, rotation);
+    const EnvironmentLight env(desc);
+    const std::string why = test::chi_square_sphere(
+        [&](float, Vec2 u) -> std::optional<test::DirectionSample> {
+          float pdf = 0;
+          const Vec3 w = env.sample(u, pdf);
+          if (!(pdf > 0)) return std::nullopt;
+          return test::DirectionSample{w, pdf};
+        },
+        [&](const Vec3& w) { return env.pdf(w); });
+    EXPECT_EQ(why, "") << rotation;
+  }
+}
+
+TEST(Environment, PlaneUnderAMapIsLitWithoutBias) {
+  // Irradiance of an upward-facing plane: E = integral of L cos over the upper hemisphere,
+  // integrated finely here; a Lambertian plane then reflects albedo E / pi.
+  SceneDesc desc;
+  test::add_quad(desc, Vec3(-50, 0, 50), Vec3(100, 0, 0), Vec3(0, 0, -100), test::add_material(desc, Rgb(0.5f)));
+  desc = with_environment(std::move(desc), Rgb(1.0f), true, 0.3f);
+  const Scene scene(std::move(desc));
+  const EnvironmentLight& env = scene.emitters().environment();
+  double E = 0;
+  const int n = 1500;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double theta = (i + 0.5) / n * kPiOver2, phi = (j + 0.5) / (2 * n) * kTwoPi;
+      const Vec3 w(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)), float(std::sin(theta) * std::sin(phi)));
+      E += env.radiance(w).y * std::cos(theta) * std::sin(theta) * (kPiOver2 / n) * (kTwoPi / (2 * n));
+    }
+  const PathIntegrator path(1, 1 << 20);
+  const test::RunningStats s = estimate(scene, path, Ray{Vec3(0.2f, 1, 0.1f), Vec3(0, -1, 0)}, 100000);
+  EXPECT_NEAR(s.mean(), 0.5 * E / kPi, test::kSigmas * s.standard_error() + 2e-3 * E);
+}
+
+TEST(Environment, FromJobFileAndErrors) {
+  const std::string dir = test::make_temp_dir("env");
+  write_exr(dir + "/sky.exr", 4, 2, std::vector<float>(4 * 2 * 4, 0.5f), {});
+  Diagnostics diag;
+  const JobFile job = parse_job_json(R"({"environment": {"map": "sky.exr", "intensity": 2, "rotation": 90}})",
+                                     dir + "/job.json", diag);
+  SceneDesc scene;
+  apply_environment(job.environment, scene);
+  ASSERT_TRUE(scene.environment.present);
+  EXPECT_FLOAT_EQ(scene.environment.color.x, 2.0f);
+  EXPECT_NEAR(scene.environment.rotation, kPiOver2, 1e-6f);
+  ASSERT_EQ(scene.images.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.images[0].texels[0], 0.5f);  // float EXR stays linear
+  EnvironmentSpec missing;
+  missing.map = dir + "/nope.exr";
+  EXPECT_THROW(apply_environment(missing, scene), InputError);
+  EXPECT_THROW(parse_job_json(R"({"environment": {}})", dir + "/job.json", diag), InputError);
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,6 +1,7 @@
 // SceneDesc: the plain-data scene that loaders produce and Scene::build consumes (no files, no Embree).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -30,7 +31,12 @@ struct TextureDesc {
 struct TextureRef {
   int texture = -1;  // index into SceneDesc::textures; -1 = none
   int texcoord = 0;  // which TEXCOORD_n set (prism reads set 0)
+  // KHR_texture_transform as a 2x3 affine map of uv, row-major: identity when absent.
+  std::array<float, 6> transform{1, 0, 0, 0, 1, 0};
   bool present() const { return texture >= 0; }
+  Vec2 apply(Vec2 uv) const {
+    return {transform[0] * uv.x + transform[1] * uv.y + transform[2], transform[3] * uv.x + transform[4] * uv.y + transform[5]};
+  }
 };
 
 // The glTF 2.0 material model as data. Colours are linear; base_color and emissive textures

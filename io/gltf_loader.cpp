@@ -20,7 +20,7 @@ namespace prism {
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
                                                       "KHR_materials_ior", "KHR_materials_volume",
-                                                      "KHR_lights_punctual"};
+                                                      "KHR_lights_punctual", "KHR_texture_transform"};
   return kSupported;
 }
 
@@ -418,7 +418,7 @@ class Converter {
     const int texcoord = v.Has("texCoord") && v.Get("texCoord").IsInt() ? v.Get("texCoord").GetNumberAsInt() : 0;
     tinygltf::ExtensionMap none;
     if (v.Has("extensions") && v.Get("extensions").Has("KHR_texture_transform"))
-      diag_.warn("extension KHR_texture_transform is not supported yet and is ignored");
+      none["KHR_texture_transform"] = v.Get("extensions").Get("KHR_texture_transform");
     return texture_ref(index.GetNumberAsInt(), texcoord, none, space, where);
   }
 
@@ -428,11 +428,15 @@ class Converter {
     if (texture < 0) return ref;
     if (texture >= static_cast<int>(model_.textures.size()))
       fail(where, "texture index " + std::to_string(texture) + " out of range");
+    if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+      ref.transform = texture_transform(it->second, where + " KHR_texture_transform");
+      if (it->second.Has("texCoord") && it->second.Get("texCoord").IsInt()) texcoord = it->second.Get("texCoord").GetNumberAsInt();
+    }
     if (texcoord != 0) diag_.warn("textures on TEXCOORD_1 and above are read with TEXCOORD_0");
-    if (extensions.count("KHR_texture_transform")) diag_.warn("extension KHR_texture_transform is not supported yet and is ignored");
     const auto key = std::make_pair(texture, space == ColorSpace::Srgb);
     if (auto it = texture_map_.find(key); it != texture_map_.end()) {
       ref.texture = it->second;
+      if (ref.texture < 0) ref = TextureRef{};
       return ref;
     }
     const tinygltf::Texture& t = model_.textures[texture];
@@ -458,6 +462,26 @@ class Converter {
     desc_.textures.push_back(desc);
     texture_map_[key] = ref.texture;
     return ref;
+  }
+
+  // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, with the extension's
+  // rotation matrix [cos sin; -sin cos] (counter-clockwise in uv, where v points down the image).
+  std::array<float, 6> texture_transform(const tinygltf::Value& v, const std::string& where) const {
+    auto pair = [&](const char* key, double fallback, double out[2]) {
+      out[0] = out[1] = fallback;
+      const tinygltf::Value& a = v.Get(key);
+      if (!a.IsArray()) return;
+      if (a.ArrayLen() != 2) fail(where, std::string(key) + " must have 2 numbers");
+      for (int i = 0; i < 2; ++i) out[i] = number(a.Get(i), fallback);
+    };
+    double offset[2], scale[2];
+    pair("offset", 0.0, offset);
+    pair("scale", 1.0, scale);
+    const double rotation = number(v.Get("rotation"), 0.0);
+    for (double x : {offset[0], offset[1], scale[0], scale[1], rotation})
+      if (!std::isfinite(x)) fail(where, "values must be finite");
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    return {float(c * scale[0]), float(s * scale[1]), float(offset[0]), float(-s * scale[0]), float(c * scale[1]), float(offset[1])};
   }
 
   static WrapMode wrap_mode(int gl) {

@@ -43,6 +43,7 @@ int floor_to_int(float v) {
 }  // namespace
 
 Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
+  uv = ref.apply(uv);
   const TextureDesc& tex = scene.textures[ref.texture];
   const ImageDesc& img = scene.images[tex.image];
   if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return {};

@@ -66,5 +66,43 @@ TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {
   EXPECT_NEAR(clamped.x, 0.0f, 1e-6f);
 }
 
+TEST(Textures, KhrTextureTransformOffsetRotationScale) {
+  const std::string dir = test::make_temp_dir("textransform");
+  // A 2x2 PNG: top-left red, top-right green, bottom-left blue, bottom-right white.
+  const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+  {
+    auto out = OIIO::ImageOutput::create(dir + "/q.png");
+    ASSERT_TRUE(out->open(dir + "/q.png", OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+    out->close();
+  }
+  test::GltfWriter w;
+  w.doc()["extensionsUsed"] = {"KHR_texture_transform"};
+  w.doc()["images"] = nlohmann::json::array({{{"uri", "q.png"}}});
+  w.doc()["samplers"] = nlohmann::json::array({{{"magFilter", 9728}}});  // nearest
+  w.doc()["textures"] = nlohmann::json::array({{{"source", 0}, {"sampler", 0}}});
+  const double half_pi = 1.5707963267948966;
+  w.doc()["materials"] = nlohmann::json::array(
+      {{{"pbrMetallicRoughness",
+         {{"baseColorTexture",
+           {{"index", 0},
+            {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}, {"rotation", half_pi}, {"scale", {1, 0.5}}}}}}}}}}}});
+  const int pos = w.add_positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  w.set_scene_nodes({w.add_node({{"mesh", w.add_mesh(pos, -1, 0)}})});
+  Diagnostics diag;
+  const SceneDesc s = load_gltf(w.write(dir, "scene"), diag);
+  EXPECT_FALSE(diag.contains("KHR_texture_transform"));
+  // uv' = T R S uv with R = [cos sin; -sin cos]: (0.1, 0.9) -> S (0.1, 0.45) -> R (0.45, -0.1)
+  // -> T (0.95, -0.1), which wraps to (0.95, 0.9): the bottom-right texel, white.
+  const Rgb a = base_color(s, s.materials[0], {0.1f, 0.9f});
+  EXPECT_NEAR(a.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(a.y, 1.0f, 1e-5f);
+  EXPECT_NEAR(a.z, 1.0f, 1e-5f);
+  // (0.9, 0.2) -> (0.9, 0.1) -> (0.1, -0.9) -> (0.6, -0.9) wraps to (0.6, 0.1): top-right, green.
+  const Rgb b = base_color(s, s.materials[0], {0.9f, 0.2f});
+  EXPECT_NEAR(b.x, 0.0f, 1e-5f);
+  EXPECT_NEAR(b.y, 1.0f, 1e-5f);
+}
+
 }  // namespace
 }  // namespace prism

@@ -8,6 +8,7 @@
 #include "core/embree_device.h"
 #include "core/spawn.h"
 #include "core/sphere_geometry.h"
+#include "core/tangents.h"
 
 namespace prism {
 
@@ -24,6 +25,9 @@ void validate_scene_desc(const SceneDesc& desc) {
         fail(where + ": normal count differs from position count");
       if (!prim.uvs.empty() && prim.uvs.size() != prim.positions.size())
         fail(where + ": uv count differs from position count");
+      if (!prim.tangents.empty() &&
+          (prim.tangents.size() != prim.positions.size() || prim.tangent_signs.size() != prim.positions.size()))
+        fail(where + ": tangent count differs from position count");
       for (uint32_t i : prim.indices)
         if (i >= prim.positions.size()) fail(where + ": vertex index " + std::to_string(i) + " out of range");
       for (const Vec3& v : prim.positions)
@@ -47,7 +51,7 @@ void validate_scene_desc(const SceneDesc& desc) {
     if (t.image < 0 || t.image >= static_cast<int>(desc.images.size())) fail("texture image index out of range");
   for (const MaterialDesc& m : desc.materials)
     for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture, &m.metallic_roughness_texture,
-                                &m.transmission_texture})
+                                &m.transmission_texture, &m.normal_texture})
       if (r->texture >= static_cast<int>(desc.textures.size()))
         fail("material '" + m.name + "': texture index out of range");
 }
@@ -61,6 +65,9 @@ void Scene::bake_single_use_meshes() {
     for (PrimitiveDesc& prim : desc_.meshes[inst.mesh].primitives) {
       for (Vec3& p : prim.positions) p = xf.point(p);
       for (Vec3& n : prim.normals) n = xf.normal(n);
+      for (Vec3& t : prim.tangents) t = xf.vector(t);
+      if (xf.flips_handedness())
+        for (float& w : prim.tangent_signs) w = -w;
       // glTF 2.0 §3.7.4: under a negative determinant the front face is clockwise; swapping two
       // corners keeps "front = counter-clockwise" true in world space.
       if (xf.flips_handedness())
@@ -233,9 +240,27 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
     if (nlen > 0 && std::isfinite(nlen)) hit.ns = nw / nlen;
   }
   hit.uv = {0, 0};
+  hit.tangent = Vec3(0.0f);
+  hit.tangent_sign = 1.0f;
   if (!prim.uvs.empty()) {
     const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
     hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+    if (!prim.tangents.empty()) {
+      // A mirroring transform reverses the frame's handedness (bitangents map by M, but
+      // cross(M^-T n, M t) flips with det M).
+      const Vec3 t = prim.tangents[idx[0]] * b0 + prim.tangents[idx[1]] * b1 + prim.tangents[idx[2]] * b2;
+      hit.tangent = world_space ? t : xf.vector(t);
+      hit.tangent_sign = prim.tangent_signs[idx[0]] * (xf.flips_handedness() ? -1.0f : 1.0f);
+    } else {
+      // No per-vertex frames: the triangle's own (already in world space).
+      const TangentFrame f = triangle_tangent_frame(p0, p1, p2, t0, t1, t2);
+      if (f.valid) {
+        hit.tangent = f.tangent;
+        hit.tangent_sign = dot(cross(hit.ns, f.tangent), f.up_image) < 0 ? -1.0f : 1.0f;
+      }
+    }
+    const float tangent_len = length(hit.tangent);
+    hit.tangent = tangent_len > 0 && std::isfinite(tangent_len) ? hit.tangent / tangent_len : Vec3(0.0f);
   }
   hit.material = prim.material;
   const int base = emitters_.triangle_base(instance, primitive);
@@ -260,6 +285,10 @@ void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceH
   hit.ng = n;
   hit.ns = n;
   hit.uv = sphere_uv(n);
+  // dP/du around +Y; -dP/dv points to the north pole, up the image, so the sign is +1.
+  const Vec3 t(n.z, 0.0f, -n.x);
+  hit.tangent = length_squared(t) > 0 ? normalize(t) : Vec3(1, 0, 0);
+  hit.tangent_sign = 1.0f;
   hit.material = s.material;
   hit.emitter = emitters_.sphere_emitter(static_cast<int>(rh.hit.primID));
 }

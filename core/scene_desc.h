@@ -60,6 +60,8 @@ struct MaterialDesc {
   Rgb emissive{0, 0, 0};
   float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
   TextureRef emissive_texture;
+  TextureRef normal_texture;  // linear; tangent-space normal, +X right and +Y up the image
+  float normal_scale = 1.0f;
   bool double_sided = false;  // emits from both faces when true; from the front face only otherwise
 
   bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
@@ -75,6 +77,10 @@ struct PrimitiveDesc {
   std::vector<Vec3> normals;
   std::vector<Vec2> uvs;
   std::vector<uint32_t> indices;  // 3 per triangle, each < positions.size()
+  // Per-vertex tangent frames for normal maps (glTF TANGENT: xyz and the handedness w, so that
+  // bitangent = w cross(normal, tangent) points up the texture image); empty when absent.
+  std::vector<Vec3> tangents;
+  std::vector<float> tangent_signs;
   int material = -1;              // -1 = the default material
 
   size_t triangle_count() const { return indices.size() / 3; }

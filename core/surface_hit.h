@@ -12,6 +12,8 @@ struct SurfaceHit {
   Vec3 ng;         // unit geometric normal on the front side (winding / outward sphere)
   Vec3 ns;         // unit shading normal (interpolated vertex normals, else ng)
   Vec2 uv;         // TEXCOORD_0 (0,0 when the primitive has none)
+  Vec3 tangent;    // toward +u, unit; zero when the surface has no uv parameterisation
+  float tangent_sign = 1;  // bitangent = sign x cross(ns, tangent) points up the texture image
   int material = -1;
   int emitter = -1;  // index into Emitters, or -1 when the surface does not emit
 };

@@ -38,7 +38,8 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
   const bool volume = p.transmission > 0 && !p.thin_walled;
   const float eta = media.interface_eta(material, hit.material, from_front);
   // Opaque and thin surfaces are two-sided: face the normals toward wo.
-  Vec3 ng = hit.ng, ns = dot(hit.ns, hit.ng) < 0 ? -hit.ns : hit.ns;
+  const Vec3 bent = shading_normal(desc, material, hit);
+  Vec3 ng = hit.ng, ns = dot(bent, hit.ng) < 0 ? -bent : bent;
   if (!from_front && !volume) {
     ng = -ng;
     ns = -ns;
@@ -49,7 +50,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
 
   // Fresnel-weighted shares of the mirror direction and the transmitted one, from the same
   // smooth interfaces the path tracer samples (a thin sheet reflects from both faces).
-  const Vec3 n_front = dot(hit.ns, hit.ng) < 0 ? -hit.ns : hit.ns;
+  const Vec3 n_front = dot(bent, hit.ng) < 0 ? -bent : bent;
   const DielectricBxdf::Mode mode = volume ? DielectricBxdf::Mode::Volume
                                            : (t > 0 ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::ReflectionOnly);
   const float R = DielectricBxdf(eta, 0.0f, Rgb(1.0f), mode).reflectance(volume ? dot(wo, n_front) : std::abs(cos_o));

@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 
+#include "core/tangents.h"
 #include "io/errors.h"
 #include "io/gltf_accessor.h"
 #include "io/image_decode.h"
@@ -308,6 +309,20 @@ class Converter {
       }
     }
 
+    if (auto it = p.attributes.find("TANGENT"); it != p.attributes.end()) {
+      const std::vector<float> t =
+          read_accessor_floats(model_, it->second, 4, {TINYGLTF_COMPONENT_TYPE_FLOAT}, file_, where + " TANGENT");
+      if (t.size() / 4 != n) fail(where + " TANGENT", "count differs from POSITION");
+      prim.tangents.resize(n);
+      prim.tangent_signs.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        prim.tangents[i] = {t[4 * i], t[4 * i + 1], t[4 * i + 2]};
+        if (!is_finite(prim.tangents[i]) || !std::isfinite(t[4 * i + 3]))
+          fail(where + " TANGENT", "tangent " + std::to_string(i) + " is not finite");
+        prim.tangent_signs[i] = t[4 * i + 3] < 0 ? -1.0f : 1.0f;
+      }
+    }
+
     std::vector<uint32_t> order;
     if (p.indices >= 0) {
       order = read_accessor_indices(model_, p.indices, file_, where + " indices");
@@ -320,6 +335,10 @@ class Converter {
       for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
     }
     prim.indices = triangulate(order, mode);
+    // glTF 2.0 §3.7.2.1: without TANGENT, tangents come from positions, normals and uvs.
+    if (prim.tangents.empty() && !prim.normals.empty() && !prim.uvs.empty() && p.material >= 0 &&
+        model_.materials[p.material].normalTexture.index >= 0)
+      generate_tangents(prim);
     if (mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
       diag_.warn(where + ": index count " + std::to_string(order.size()) + " is not a multiple of 3; the rest is ignored");
     return true;
@@ -397,7 +416,10 @@ class Converter {
                     pbr.metallicRoughnessTexture.extensions, ColorSpace::Linear, where + " metallicRoughnessTexture");
     if (out.volume && out.transmission <= 0 && !out.transmission_texture.present())
       diag_.warn("KHR_materials_volume without transmission has no visible effect (the surface is opaque)");
-    if (m.normalTexture.index >= 0) diag_.warn("normalTexture (normal mapping) is not supported yet and is ignored");
+    out.normal_texture = texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                     ColorSpace::Linear, where + " normalTexture");
+    out.normal_scale = float(m.normalTexture.scale);
+    if (!std::isfinite(out.normal_scale)) fail(where, "normalTexture scale must be finite");
     if (m.occlusionTexture.index >= 0)
       diag_.warn("occlusionTexture ignored: a path tracer computes occlusion itself");
     if (m.alphaMode != "OPAQUE") diag_.warn("alphaMode " + m.alphaMode + " is not supported yet: surfaces render opaque");

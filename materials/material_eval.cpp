@@ -41,8 +41,22 @@ Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& 
   return e;
 }
 
+Vec3 shading_normal(const SceneDesc& scene, const MaterialDesc& m, const SurfaceHit& hit) {
+  if (!m.normal_texture.present() || length_squared(hit.tangent) == 0) return hit.ns;
+  const Vec3 t = hit.tangent - hit.ns * dot(hit.ns, hit.tangent);
+  if (!(length_squared(t) > 1e-12f)) return hit.ns;
+  const Vec3 tangent = normalize(t);
+  const Vec3 bitangent = cross(hit.ns, tangent) * hit.tangent_sign;
+  const Rgb c = lookup_texture(scene, m.normal_texture, hit.uv).rgb;
+  const Vec3 local((2.0f * c.x - 1.0f) * m.normal_scale, (2.0f * c.y - 1.0f) * m.normal_scale, 2.0f * c.z - 1.0f);
+  const Vec3 n = tangent * local.x + bitangent * local.y + hit.ns * local.z;
+  const float len = length(n);
+  return len > 0 && std::isfinite(len) ? n / len : hit.ns;
+}
+
 Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta) {
-  return Bsdf(surface_params(scene, scene.material(hit.material), hit.uv), hit.ns, hit.ng, wo, eta);
+  const MaterialDesc& m = scene.material(hit.material);
+  return Bsdf(surface_params(scene, m, hit.uv), shading_normal(scene, m, hit), hit.ng, wo, eta);
 }
 
 }  // namespace prism

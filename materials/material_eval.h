@@ -20,6 +20,10 @@ SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2
 // material is double-sided.
 Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& ng, const Vec3& w);
 
+// The shading normal at a hit: the interpolated normal, bent by the material's normal map in the
+// hit's tangent frame (glTF 2.0 §3.9.3: n = normalize(T x + B y + N z), x and y scaled).
+Vec3 shading_normal(const SceneDesc& scene, const MaterialDesc& m, const SurfaceHit& hit);
+
 // The BSDF at a hit, for light leaving toward wo; eta = n_back / n_front at the surface.
 Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta);
 

@@ -18,6 +18,7 @@
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 #include "io/scene_source.h"
+#include "materials/material_eval.h"
 
 namespace prism {
 namespace {
@@ -114,7 +115,7 @@ int render(const RenderOptions& o) {
 
   std::unique_ptr<Scene> scene;
   try {
-    scene = std::make_unique<Scene>(std::move(loaded.scene));
+    scene = std::make_unique<Scene>(std::move(loaded.scene), &material_alpha);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.scene, "", e.what());
   }

@@ -1,11 +1,13 @@
 #include "core/scene.h"
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "core/embree_device.h"
+#include "core/hash.h"
 #include "core/spawn.h"
 #include "core/sphere_geometry.h"
 #include "core/tangents.h"
@@ -94,7 +96,50 @@ RTCGeometry triangle_geometry(RTCDevice device, PrimitiveDesc& prim) {
 
 }  // namespace
 
-Scene::Scene(SceneDesc desc) : desc_(std::move(desc)) {
+void Scene::alpha_filter(const RTCFilterFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  const auto* data = static_cast<const AlphaFilterData*>(args->geometryUserPtr);
+  const SceneDesc& desc = data->scene->desc_;
+  const PrimitiveDesc& prim = desc.meshes[data->mesh].primitives[data->primitive];
+  const MaterialDesc& m = desc.material(prim.material);
+  const uint32_t tri = RTCHitN_primID(args->hit, 1, 0);
+  const float b1 = RTCHitN_u(args->hit, 1, 0), b2 = RTCHitN_v(args->hit, 1, 0), b0 = 1.0f - b1 - b2;
+  Vec2 uv{0, 0};
+  if (!prim.uvs.empty()) {
+    const uint32_t* idx = &prim.indices[3 * size_t(tri)];
+    const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
+    uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+  }
+  const float alpha = data->scene->alpha_(desc, prim.material, uv);
+  bool keep;
+  if (m.alpha_mode == MaterialDesc::AlphaMode::Mask) {
+    keep = alpha >= m.alpha_cutoff;
+  } else {
+    // Stochastic transparency, a pure function of this ray meeting this point: the same
+    // camera ray makes the same choice on every run and thread.
+    auto bits = [](float f) {
+      uint32_t u;
+      std::memcpy(&u, &f, 4);
+      return uint64_t(u);
+    };
+    RTCRayN* r = args->ray;  // Embree 3 declares the accessors on non-const rays
+    const uint64_t h = hash_values(bits(RTCRayN_org_x(r, 1, 0)), bits(RTCRayN_org_y(r, 1, 0)), bits(RTCRayN_org_z(r, 1, 0)),
+                                   bits(RTCRayN_dir_x(r, 1, 0)), bits(RTCRayN_dir_y(r, 1, 0)), bits(RTCRayN_dir_z(r, 1, 0)),
+                                   uint64_t(tri), bits(b1), bits(b2));
+    keep = float(h >> 40) * 0x1p-24f < alpha;
+  }
+  if (!keep) args->valid[0] = 0;
+}
+
+void Scene::attach_alpha_filter(RTCGeometry geom, int mesh, int primitive) {
+  if (!alpha_ || !desc_.material(desc_.meshes[mesh].primitives[primitive].material).has_alpha()) return;
+  alpha_filters_.push_back(std::make_unique<AlphaFilterData>(AlphaFilterData{this, mesh, primitive}));
+  rtcSetGeometryUserData(geom, alpha_filters_.back().get());
+  rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+  rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+}
+
+Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alpha_(alpha) {
   const auto start = std::chrono::steady_clock::now();
   validate_scene_desc(desc_);
   features_ = desc_.features();
@@ -115,9 +160,13 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)) {
     const InstanceDesc& inst = desc_.instances[i];
     auto& prims = desc_.meshes[inst.mesh].primitives;
     if (uses[inst.mesh] == 1) {
-      for (size_t p = 0; p < prims.size(); ++p)
-        if (prims[p].triangle_count() > 0)
-          attach_top(triangle_geometry(device, prims[p]), {static_cast<int>(i), static_cast<int>(p)});
+      for (size_t p = 0; p < prims.size(); ++p) {
+        if (prims[p].triangle_count() == 0) continue;
+        RTCGeometry geom = triangle_geometry(device, prims[p]);
+        attach_alpha_filter(geom, inst.mesh, static_cast<int>(p));
+        rtcCommitGeometry(geom);
+        attach_top(geom, {static_cast<int>(i), static_cast<int>(p)});
+      }
       continue;
     }
     RTCScene& mesh_scene = mesh_scenes_[inst.mesh];
@@ -126,6 +175,8 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)) {
       for (size_t p = 0; p < prims.size(); ++p) {
         if (prims[p].triangle_count() == 0) continue;
         RTCGeometry geom = triangle_geometry(device, prims[p]);
+        attach_alpha_filter(geom, inst.mesh, static_cast<int>(p));
+        rtcCommitGeometry(geom);
         rtcAttachGeometryByID(mesh_scene, geom, static_cast<unsigned>(p));  // geomID = primitive
         rtcReleaseGeometry(geom);
       }

@@ -13,6 +13,10 @@
 
 namespace prism {
 
+// Coverage (glTF alpha: base colour factor x texture alpha) of material `material` at uv. Core
+// cannot evaluate materials itself; the caller hands this in (materials/ provides one).
+using AlphaFunction = float (*)(const SceneDesc& scene, int material, Vec2 uv);
+
 class Scene {
  public:
   // Validates `desc` (indices in range; throws std::invalid_argument naming the element) and
@@ -20,7 +24,11 @@ class Scene {
   // the top-level BVH; a mesh placed several times gets its own BVH, instanced per placement
   // (instancing costs a ray transform per visit, so only scenes that reuse meshes pay it).
   // All spheres share one user geometry.
-  explicit Scene(SceneDesc desc);
+  // With `alpha`, primitives whose material has alphaMode MASK or BLEND get Embree filter
+  // functions: MASK rejects hits below the cutoff; BLEND keeps a hit with probability alpha,
+  // decided by a hash of the ray and the hit so every run makes the same choice. Without it
+  // every surface is opaque.
+  explicit Scene(SceneDesc desc, AlphaFunction alpha = nullptr);
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
@@ -42,7 +50,15 @@ class Scene {
     int primitive = -1;  // baked meshes: the primitive; instances: -1 (Embree's geomID says)
   };
 
+  // What an alpha filter needs to know about the primitive it guards.
+  struct AlphaFilterData {
+    const Scene* scene;
+    int mesh, primitive;
+  };
+
   void bake_single_use_meshes();
+  void attach_alpha_filter(RTCGeometry geom, int mesh, int primitive);
+  static void alpha_filter(const RTCFilterFunctionNArguments* args);
   void reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 
@@ -53,6 +69,8 @@ class Scene {
   std::vector<TopGeometry> top_geometries_;
   unsigned sphere_geom_id_ = RTC_INVALID_GEOMETRY_ID;
   Emitters emitters_;
+  AlphaFunction alpha_ = nullptr;
+  std::vector<std::unique_ptr<AlphaFilterData>> alpha_filters_;
   double build_seconds_ = 0;
 };
 

@@ -36,6 +36,7 @@ SceneFeatures SceneDesc::features() const {
         m.transmission_texture.present() || m.normal_texture.present())
       f.textures = true;
     if (m.is_transmissive()) f.transmission = true;
+    if (m.has_alpha()) f.alpha = true;
     if (m.has_volume() && (m.attenuation_distance < std::numeric_limits<float>::infinity()) &&
         min(m.attenuation_color, Rgb(1.0f)) != Rgb(1.0f))
       f.absorbing_media = true;

@@ -63,8 +63,11 @@ struct MaterialDesc {
   TextureRef normal_texture;  // linear; tangent-space normal, +X right and +Y up the image
   float normal_scale = 1.0f;
   bool double_sided = false;  // emits from both faces when true; from the front face only otherwise
+  enum class AlphaMode { Opaque, Mask, Blend } alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;  // MASK: coverage below this is a hole
 
   bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
+  bool has_alpha() const { return alpha_mode != AlphaMode::Opaque; }
   bool is_transmissive() const { return transmission > 0 || transmission_texture.present(); }
   // A closed volume whose interior is a medium (refraction, absorption).
   bool has_volume() const { return volume && is_transmissive(); }
@@ -161,6 +164,7 @@ struct SceneFeatures {
   bool environment = false;
   bool transmission = false;     // some material transmits light
   bool absorbing_media = false;  // some volume absorbs
+  bool alpha = false;            // some material is cut out (MASK) or partly transparent (BLEND)
 };
 
 struct SceneDesc {

@@ -422,7 +422,15 @@ class Converter {
     if (!std::isfinite(out.normal_scale)) fail(where, "normalTexture scale must be finite");
     if (m.occlusionTexture.index >= 0)
       diag_.warn("occlusionTexture ignored: a path tracer computes occlusion itself");
-    if (m.alphaMode != "OPAQUE") diag_.warn("alphaMode " + m.alphaMode + " is not supported yet: surfaces render opaque");
+    if (m.alphaMode == "MASK") {
+      out.alpha_mode = MaterialDesc::AlphaMode::Mask;
+      out.alpha_cutoff = float(m.alphaCutoff);
+      if (!(out.alpha_cutoff >= 0 && std::isfinite(out.alpha_cutoff))) fail(where, "alphaCutoff must be >= 0");
+    } else if (m.alphaMode == "BLEND") {
+      out.alpha_mode = MaterialDesc::AlphaMode::Blend;
+    } else if (m.alphaMode != "OPAQUE") {
+      fail(where, "unknown alphaMode '" + m.alphaMode + "'");
+    }
     return out;
   }
 

@@ -12,6 +12,13 @@ Rgb base_color(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv) {
   return c;
 }
 
+float material_alpha(const SceneDesc& scene, int material, Vec2 uv) {
+  const MaterialDesc& m = scene.material(material);
+  float a = m.base_alpha;
+  if (m.base_color_texture.present()) a *= lookup_texture(scene, m.base_color_texture, uv).a;
+  return a;
+}
+
 SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv) {
   SurfaceParams p;
   p.base_color = base_color(scene, m, uv);

@@ -12,6 +12,10 @@ namespace prism {
 // Base colour (factor x sRGB-decoded texture), linear.
 Rgb base_color(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv);
 
+// Coverage: base colour alpha factor x texture alpha (glTF alphaMode MASK and BLEND); fits
+// Scene's AlphaFunction.
+float material_alpha(const SceneDesc& scene, int material, Vec2 uv);
+
 // Every glTF factor multiplied by its texture at uv.
 SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv);
 

@@ -53,7 +53,8 @@ void validate_scene_desc(const SceneDesc& desc) {
     if (t.image < 0 || t.image >= static_cast<int>(desc.images.size())) fail("texture image index out of range");
   for (const MaterialDesc& m : desc.materials)
     for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture, &m.metallic_roughness_texture,
-                                &m.transmission_texture, &m.normal_texture})
+                                &m.transmission_texture, &m.normal_texture, &m.specular_texture,
+                                &m.specular_color_texture})
       if (r->texture >= static_cast<int>(desc.textures.size()))
         fail("material '" + m.name + "': texture index out of range");
 }

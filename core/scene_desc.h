@@ -52,6 +52,10 @@ struct MaterialDesc {
   float transmission = 0.0f;              // KHR_materials_transmission
   TextureRef transmission_texture;        // linear; R = transmission
   float ior = 1.5f;                       // KHR_materials_ior
+  float specular = 1.0f;                  // KHR_materials_specular: strength of the dielectric layer
+  TextureRef specular_texture;            // linear; A = specular
+  Rgb specular_color{1, 1, 1};            // tint of the layer's F0
+  TextureRef specular_color_texture;      // sRGB
   // KHR_materials_volume with thicknessFactor > 0: the mesh bounds a volume that refracts and
   // absorbs; otherwise transmission is thin-walled (glTF KHR_materials_volume, "thin-walled").
   bool volume = false;

@@ -21,7 +21,8 @@ namespace prism {
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
                                                       "KHR_materials_ior", "KHR_materials_volume",
-                                                      "KHR_lights_punctual", "KHR_texture_transform"};
+                                                      "KHR_lights_punctual", "KHR_texture_transform",
+                                                      "KHR_materials_specular"};
   return kSupported;
 }
 
@@ -388,6 +389,14 @@ class Converter {
         const double ior = number(value.Get("ior"), 1.5);
         if (!(ior >= 1.0 && std::isfinite(ior))) fail(where, "KHR_materials_ior ior must be a finite number >= 1");
         out.ior = float(ior);
+      } else if (name == "KHR_materials_specular") {
+        out.specular = float(non_negative(value.Get("specularFactor"), 1.0, where + " specularFactor"));
+        out.specular_texture = texture_info(value.Get("specularTexture"), ColorSpace::Linear, where + " specularTexture");
+        const tinygltf::Value& c = value.Get("specularColorFactor");
+        if (c.IsArray() && c.ArrayLen() == 3)
+          for (int k = 0; k < 3; ++k) out.specular_color[k] = float(non_negative(c.Get(k), 1.0, where + " specularColorFactor"));
+        out.specular_color_texture =
+            texture_info(value.Get("specularColorTexture"), ColorSpace::Srgb, where + " specularColorTexture");
       } else if (name == "KHR_materials_volume") {
         // thicknessFactor is a rasteriser's stand-in for the distance travelled inside: prism
         // measures the real path length. Only its zero/non-zero meaning is used: 0 (the default)
@@ -407,6 +416,8 @@ class Converter {
         diag_.warn("extension " + name + " is not supported yet and is ignored");
       }
     }
+    if (out.is_transmissive() && m.extensions.count("KHR_materials_specular"))
+      diag_.warn("KHR_materials_specular on transmissive materials affects only their opaque share");
     out.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                          pbr.baseColorTexture.extensions, ColorSpace::Srgb, where + " baseColorTexture");
     out.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,

@@ -11,6 +11,7 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
                   p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume),
       coat_(eta, p.roughness * p.roughness, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly),
       diffuse_{p.base_color} {
+  coat_.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
   const bool volume_boundary = p.transmission > 0 && !p.thin_walled;
   const float side = dot(wo, ng);
   valid_ = side != 0;
@@ -24,14 +25,15 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   if (wo_.z == 0) valid_ = false;
 
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
-  const float F = coat_.reflectance(wo_.z);
+  // glTF's fresnel_mix: the layer reflects F (per channel), the base below gets 1 - max(F).
+  const Rgb F = coat_.reflectance_rgb(wo_.z);
   weight_[kMetal] = m;
   weight_[kDielectric] = (1 - m) * t;
   weight_[kCoat] = (1 - m) * (1 - t);
-  weight_[kDiffuse] = (1 - m) * (1 - t) * (1 - F);
+  weight_[kDiffuse] = (1 - m) * (1 - t) * std::max(0.0f, 1 - max_component(F));
   // Choose lobes by their albedo estimate at wo.
   float pick[kLobes] = {m * std::max(luminance(metal_.reflectance(wo_.z)), 0.05f), weight_[kDielectric],
-                        weight_[kCoat] * F, weight_[kDiffuse] * std::max(luminance(p.base_color), 0.05f)};
+                        weight_[kCoat] * luminance(F), weight_[kDiffuse] * std::max(luminance(p.base_color), 0.05f)};
   if (wo_.z < 0) pick[kMetal] = pick[kCoat] = pick[kDiffuse] = 0;  // only a volume boundary is seen from below
   float total = 0;
   for (float v : pick) total += v;

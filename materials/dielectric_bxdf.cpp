@@ -1,5 +1,6 @@
 #include "materials/dielectric_bxdf.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "materials/fresnel.h"
@@ -19,6 +20,17 @@ float DielectricBxdf::reflectance(float cos_o) const {
   // series), so R = r + t^2 r / (1 - r^2) with t = 1 - r.
   const float t = 1.0f - r;
   return r < 1.0f ? r + t * t * r / (1.0f - r * r) : 1.0f;
+}
+
+Rgb DielectricBxdf::reflectance_rgb(float cos_o) const {
+  const float r = reflectance(cos_o);
+  if (spec_weight_ == 1.0f && spec_color_ == Rgb(1.0f)) return Rgb(r);
+  // Where the exact curve sits between its F0 and 1, the tinted curve sits between F0 x colour
+  // and 1 (how glTF's specular colour scales F0 while grazing reflection stays white).
+  const float f0 = ((eta_ - 1) / (eta_ + 1)) * ((eta_ - 1) / (eta_ + 1));
+  const float w = f0 < 1.0f ? std::clamp((r - f0) / (1.0f - f0), 0.0f, 1.0f) : 1.0f;
+  const Rgb f0_tinted = min(spec_color_ * f0, Rgb(1.0f));
+  return (f0_tinted + (Rgb(1.0f) - f0_tinted) * w) * spec_weight_;
 }
 
 bool DielectricBxdf::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const {
@@ -51,7 +63,10 @@ Rgb DielectricBxdf::f(const Vec3& wo, const Vec3& wi) const {
   if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return {};
   const float R = reflectance(dot(wo, wm));
   const float cos_o = std::abs(wo.z), cos_i = std::abs(wi.z);
-  if (reflect) return Rgb(ggx_.D(wm) * ggx_.G(wo, wi) * R / (4.0f * cos_i * cos_o));
+  if (reflect) {
+    const Rgb Rc = mode_ == Mode::ReflectionOnly ? reflectance_rgb(dot(wo, wm)) : Rgb(R);
+    return Rc * (ggx_.D(wm) * ggx_.G(wo, wi) / (4.0f * cos_i * cos_o));
+  }
   if (mode_ == Mode::ThinWalled) return tint_ * (ggx_.D(wm) * ggx_.G(wo, wi_m) * (1.0f - R) / (4.0f * cos_i * cos_o));
   // Walter et al. eq. 21, with radiance scaled by 1 / etap^2 crossing the boundary.
   const float denom = dot(wi, wm) + dot(wo, wm) / etap;
@@ -95,7 +110,7 @@ std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, V
     if (u_lobe < pr / (pr + pt)) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
       s.pdf = pr / (pr + pt);
-      s.f = Rgb(R / cos_o);
+      s.f = (mode_ == Mode::ReflectionOnly ? reflectance_rgb(wo.z) : Rgb(R)) / cos_o;
       return s;
     }
     s.transmission = true;

@@ -22,6 +22,15 @@ class DielectricBxdf {
   DielectricBxdf(float eta, float alpha, const Rgb& tint, Mode mode)
       : eta_(eta), ggx_(alpha), smooth_(alpha < GgxDistribution::kSmoothAlpha), tint_(tint), mode_(mode) {}
 
+  // KHR_materials_specular for ReflectionOnly: the reflectance curve is remapped from F0 to a
+  // tinted F0 x colour (capped at 1) and scaled by `weight`; (1, white) leaves it exact.
+  void set_specular(float weight, const Rgb& color) {
+    spec_weight_ = weight;
+    spec_color_ = color;
+  }
+  // Reflectance with the specular remapping, per channel.
+  Rgb reflectance_rgb(float cos_o) const;
+
   bool is_delta() const { return smooth_ || eta_ == 1.0f; }
   Rgb f(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -40,6 +49,8 @@ class DielectricBxdf {
   bool smooth_;
   Rgb tint_;
   Mode mode_;
+  float spec_weight_ = 1;
+  Rgb spec_color_{1, 1, 1};
 };
 
 }  // namespace prism

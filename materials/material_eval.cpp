@@ -36,6 +36,10 @@ SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2
   p.transmission = std::clamp(p.transmission, 0.0f, 1.0f);
   p.ior = m.ior;
   p.thin_walled = !m.has_volume();
+  p.specular = m.specular;
+  if (m.specular_texture.present()) p.specular *= lookup_texture(scene, m.specular_texture, uv).a;
+  p.specular_color = m.specular_color;
+  if (m.specular_color_texture.present()) p.specular_color *= lookup_texture(scene, m.specular_color_texture, uv).rgb;
   return p;
 }
 

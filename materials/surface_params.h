@@ -11,6 +11,8 @@ struct SurfaceParams {
   float roughness = 1;
   float transmission = 0;
   float ior = 1.5f;
+  float specular = 1;         // KHR_materials_specular weight of the dielectric layer
+  Rgb specular_color{1, 1, 1};  // and the tint of its F0
   bool thin_walled = true;  // transmission passes straight through a sheet (no volume)
 };
 

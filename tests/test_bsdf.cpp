@@ -275,6 +275,34 @@ TEST(Reciprocity, ReflectionLobesAreSymmetric) {
   }
 }
 
+// --- KHR_materials_specular ------------------------------------------------------------------
+
+TEST(Specular, DefaultsLeaveTheExactFresnelAndColourTintsF0) {
+  DielectricBxdf coat(1.5f, 0.0f, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly);
+  for (float c : {1.0f, 0.5f, 0.1f}) EXPECT_EQ(coat.reflectance_rgb(c), Rgb(coat.reflectance(c)));
+  coat.set_specular(0.5f, Rgb(2.0f, 1.0f, 0.0f));
+  const Rgb normal = coat.reflectance_rgb(1.0f);  // 0.5 x min(0.04 x colour, 1)
+  EXPECT_NEAR(normal.x, 0.04f, 1e-6f);
+  EXPECT_NEAR(normal.y, 0.02f, 1e-6f);
+  EXPECT_NEAR(normal.z, 0.0f, 1e-6f);
+  const Rgb grazing = coat.reflectance_rgb(1e-4f);  // grazing reflection stays white, x weight
+  EXPECT_NEAR(grazing.x, 0.5f, 1e-3f);
+  EXPECT_NEAR(grazing.z, 0.5f, 1e-3f);
+}
+
+TEST(Specular, ZeroSpecularLeavesPureDiffuseAndEnergyStaysBounded) {
+  SurfaceParams p = material(0, 0.0f, 0, true);
+  p.base_color = Rgb(1.0f);
+  p.specular = 0;
+  EXPECT_NEAR(bsdf_albedo(p, direction(30)).mean(), 1.0, 1e-5);  // all diffuse, no layer
+  p.specular = 1;
+  p.specular_color = Rgb(5.0f, 1.0f, 0.2f);  // F0 tints above 1 are capped
+  for (float deg : {0.0f, 60.0f, 85.0f}) {
+    const test::RunningStats a = bsdf_albedo(p, direction(deg));
+    EXPECT_LE(a.mean(), 1.0 + test::kSigmas * a.standard_error()) << deg;
+  }
+}
+
 // --- Robustness ------------------------------------------------------------------------------
 
 TEST(Ggx, FiniteAtThePeakAndNormalisedForNarrowLobes) {

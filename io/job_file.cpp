@@ -27,7 +27,7 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "materials", "spheres", "environment"});
+                             "integrator", "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
       const std::filesystem::path path(p);
@@ -73,6 +73,11 @@ class JobParser {
       if (e.contains("intensity")) job.environment.intensity = number_at(e["intensity"], where + ".intensity", 0, 3.0e38);
       if (e.contains("rotation")) job.environment.rotation_degrees = number_at(e["rotation"], where + ".rotation", -1e6, 1e6);
       if (!job.environment.present()) fail(where, "needs a \"map\" or a \"color\"");
+    }
+    if (root.contains("lights")) {
+      const json& list = root["lights"];
+      if (!list.is_array()) fail("$.lights", "expected an array");
+      for (size_t i = 0; i < list.size(); ++i) job.lights.push_back(light(list[i], i));
     }
     if (root.contains("spheres")) {
       const json& list = root["spheres"];
@@ -152,6 +157,41 @@ class JobParser {
       if (!(*m.attenuation_distance > 0)) fail(where + ".attenuation_distance", "must be positive");
     }
     return m;
+  }
+
+  // A KHR_lights_punctual light in the job: "type", "color", "intensity" (cd or lux), "position",
+  // "direction" (where it shines), "range", and "inner_cone_angle" / "outer_cone_angle" (radians).
+  PunctualLightDesc light(const json& j, size_t index) {
+    const std::string where = "$.lights[" + std::to_string(index) + "]";
+    expect_object(j, where);
+    warn_unknown(j, where, {"name", "type", "color", "intensity", "position", "direction", "range", "inner_cone_angle",
+                            "outer_cone_angle"});
+    PunctualLightDesc l;
+    l.name = j.contains("name") ? string_at(j["name"], where + ".name") : "light " + std::to_string(index);
+    const std::string type = j.contains("type") ? string_at(j["type"], where + ".type") : "";
+    if (type == "point") l.type = LightType::Point;
+    else if (type == "spot") l.type = LightType::Spot;
+    else if (type == "directional") l.type = LightType::Directional;
+    else fail(where + ".type", "expected \"point\", \"spot\" or \"directional\"");
+    const Rgb colour = j.contains("color") ? vec3_at(j["color"], where + ".color", 0, 3.0e38) : Rgb(1.0f);
+    const float intensity = j.contains("intensity") ? number_at(j["intensity"], where + ".intensity", 0, 3.0e38) : 1.0f;
+    l.intensity = colour * intensity;
+    if (j.contains("position")) l.position = vec3_at(j["position"], where + ".position", -3.0e38, 3.0e38);
+    else if (l.type != LightType::Directional) fail(where, "missing \"position\"");
+    if (j.contains("direction")) {
+      const Vec3 d = vec3_at(j["direction"], where + ".direction", -3.0e38, 3.0e38);
+      if (!(length(d) > 0)) fail(where + ".direction", "must not be zero");
+      l.direction = normalize(d);
+    } else if (l.type != LightType::Point) {
+      fail(where, "missing \"direction\"");
+    }
+    if (j.contains("range")) l.range = number_at(j["range"], where + ".range", 0, 3.0e38);
+    const float inner = j.contains("inner_cone_angle") ? number_at(j["inner_cone_angle"], where + ".inner_cone_angle", 0, 1.5707964) : 0.0f;
+    const float outer = j.contains("outer_cone_angle") ? number_at(j["outer_cone_angle"], where + ".outer_cone_angle", 0, 1.5707964) : 0.7853982f;
+    if (l.type == LightType::Spot && !(inner < outer)) fail(where, "inner_cone_angle must be below outer_cone_angle");
+    l.cos_inner = std::cos(inner);
+    l.cos_outer = std::cos(outer);
+    return l;
   }
 
   JobSphere sphere(const json& j, size_t index, JobFile& job) {
@@ -253,6 +293,7 @@ void apply_job_edits(const JobFile& job, SceneDesc& scene) {
       scene.materials.push_back(m);
     }
   }
+  scene.lights.insert(scene.lights.end(), job.lights.begin(), job.lights.end());
   for (size_t i = 0; i < job.spheres.size(); ++i) {
     const JobSphere& js = job.spheres[i];
     SphereDesc s;

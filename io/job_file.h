@@ -62,6 +62,7 @@ struct JobFile {
   RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;
   std::vector<JobSphere> spheres;
+  std::vector<PunctualLightDesc> lights;  // added to the scene's own
   EnvironmentSpec environment;
 };
 

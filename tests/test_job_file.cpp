@@ -1,6 +1,7 @@
 // Job files: settings, material overrides, analytic spheres, and errors that name the key.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "gltf_writer.h"
@@ -109,6 +110,25 @@ TEST(JobFile, GlassMaterialFields) {
   EXPECT_TRUE(diag.empty());
   EXPECT_THROW(parse(R"({"materials": {"g": {"ior": 0.5}}})", diag), InputError);
   EXPECT_THROW(parse(R"({"materials": {"g": {"attenuation_distance": 0}}})", diag), InputError);
+}
+
+TEST(JobFile, PunctualLights) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({"lights": [
+      {"type": "directional", "direction": [0, -2, 0], "color": [1, 0.5, 0.5], "intensity": 3},
+      {"type": "spot", "position": [1, 2, 3], "direction": [0, 0, -1], "inner_cone_angle": 0.1, "outer_cone_angle": 0.3}]})",
+                            diag);
+  SceneDesc scene;
+  apply_job_edits(job, scene);
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+  EXPECT_NEAR(scene.lights[0].direction.y, -1.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(scene.lights[0].intensity.y, 1.5f);
+  EXPECT_NEAR(scene.lights[1].cos_outer, std::cos(0.3f), 1e-6f);
+  EXPECT_THROW(parse(R"({"lights": [{"type": "laser"}]})", diag), InputError);
+  EXPECT_THROW(parse(R"({"lights": [{"type": "point"}]})", diag), InputError);
+  EXPECT_THROW(parse(R"({"lights": [{"type": "spot", "position": [0,0,0], "direction": [0,0,1],
+      "inner_cone_angle": 0.5, "outer_cone_angle": 0.2}]})", diag), InputError);
 }
 
 TEST(JobFile, SphereWithUnknownMaterialIsAnError) {

@@ -20,6 +20,16 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   ng_ = mirror ? -ng : ng;
   Vec3 n = mirror ? -ns : ns;
   if (dot(n, ng_) < 0) n = -n;  // a shading normal facing into the surface: keep its side right
+  // Interpolated normals can put wo below the shading hemisphere near silhouettes although it is
+  // above the surface: the BSDF would be zero there (black rims). Bend the shading normal toward
+  // wo just enough that wo sits above it again, by at most what the geometry allows.
+  const float s_side = dot(wo, ng_) < 0 ? -1.0f : 1.0f;  // +1 once two-sided surfaces are mirrored
+  const Vec3 n_side = n * s_side;
+  const float threshold = std::min(0.9f * std::abs(side), 0.01f);
+  if (valid_ && dot(wo, n_side) < threshold) {
+    const Vec3 bent = n_side + wo * (threshold - dot(wo, n_side));
+    if (length_squared(bent) > 0) n = normalize(bent) * s_side;
+  }
   frame_ = Frame::from_normal(n);
   wo_ = frame_.to_local(wo);
   if (wo_.z == 0) valid_ = false;

@@ -416,8 +416,6 @@ class Converter {
         diag_.warn("extension " + name + " is not supported yet and is ignored");
       }
     }
-    if (out.is_transmissive() && m.extensions.count("KHR_materials_specular"))
-      diag_.warn("KHR_materials_specular on transmissive materials affects only their opaque share");
     out.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                          pbr.baseColorTexture.extensions, ColorSpace::Srgb, where + " baseColorTexture");
     out.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,

@@ -12,6 +12,7 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
       coat_(eta, p.roughness * p.roughness, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly),
       diffuse_{p.base_color} {
   coat_.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
+  dielectric_.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
   const bool volume_boundary = p.transmission > 0 && !p.thin_walled;
   const float side = dot(wo, ng);
   valid_ = side != 0;

@@ -33,6 +33,15 @@ Rgb DielectricBxdf::reflectance_rgb(float cos_o) const {
   return (f0_tinted + (Rgb(1.0f) - f0_tinted) * w) * spec_weight_;
 }
 
+DielectricBxdf::Split DielectricBxdf::split(float cos_o) const {
+  if (spec_weight_ == 1.0f && spec_color_ == Rgb(1.0f)) {
+    const float r = reflectance(cos_o);
+    return {Rgb(r), r};
+  }
+  const Rgb rc = reflectance_rgb(cos_o);
+  return {rc, std::min(1.0f, max_component(rc))};
+}
+
 bool DielectricBxdf::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const {
   const float cos_o = wo.z, cos_i = wi.z;
   if (cos_o == 0 || cos_i == 0) return false;
@@ -61,12 +70,10 @@ Rgb DielectricBxdf::f(const Vec3& wo, const Vec3& wi) const {
   const Vec3 wi_m = (reflect || mode_ != Mode::ThinWalled) ? wi : flip_z(wi);
   // Microfacets seen from behind contribute nothing.
   if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return {};
-  const float R = reflectance(dot(wo, wm));
+  const Split F = split(dot(wo, wm));
+  const float R = F.scalar;
   const float cos_o = std::abs(wo.z), cos_i = std::abs(wi.z);
-  if (reflect) {
-    const Rgb Rc = mode_ == Mode::ReflectionOnly ? reflectance_rgb(dot(wo, wm)) : Rgb(R);
-    return Rc * (ggx_.D(wm) * ggx_.G(wo, wi) / (4.0f * cos_i * cos_o));
-  }
+  if (reflect) return F.reflect * (ggx_.D(wm) * ggx_.G(wo, wi) / (4.0f * cos_i * cos_o));
   if (mode_ == Mode::ThinWalled) return tint_ * (ggx_.D(wm) * ggx_.G(wo, wi_m) * (1.0f - R) / (4.0f * cos_i * cos_o));
   // Walter et al. eq. 21, with radiance scaled by 1 / etap^2 crossing the boundary.
   const float denom = dot(wi, wm) + dot(wo, wm) / etap;
@@ -84,7 +91,7 @@ float DielectricBxdf::pdf(const Vec3& wo, const Vec3& wi) const {
   if (!half_vector(wo, wi, wm, etap)) return 0;
   const Vec3 wi_m = (reflect || mode_ != Mode::ThinWalled) ? wi : flip_z(wi);
   if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return 0;
-  const float R = reflectance(dot(wo, wm));
+  const float R = split(dot(wo, wm)).scalar;
   const float pr = mode_ == Mode::ReflectionOnly ? 1.0f : R;
   const float pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
   if (pr + pt <= 0) return 0;
@@ -101,7 +108,8 @@ std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, V
   if (wo.z == 0) return std::nullopt;
   if (is_delta()) {
     // Smooth interface: mirror reflection or refraction, chosen in proportion to Fresnel.
-    const float R = reflectance(wo.z);
+    const Split F = split(wo.z);
+    const float R = F.scalar;
     const float pr = R, pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
     if (pr + pt <= 0) return std::nullopt;
     const float cos_o = std::abs(wo.z);
@@ -110,7 +118,7 @@ std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, V
     if (u_lobe < pr / (pr + pt)) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
       s.pdf = pr / (pr + pt);
-      s.f = (mode_ == Mode::ReflectionOnly ? reflectance_rgb(wo.z) : Rgb(R)) / cos_o;
+      s.f = F.reflect / cos_o;
       return s;
     }
     s.transmission = true;
@@ -129,7 +137,7 @@ std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, V
 
   const Vec3 wm = ggx_.sample_visible(wo, u);  // in wo's hemisphere
   // Fresnel takes the cosine against the +z-facing normal: negative from the back (eta inverts).
-  const float R = reflectance(dot(wo, wm.z < 0 ? -wm : wm));
+  const float R = split(dot(wo, wm.z < 0 ? -wm : wm)).scalar;
   const float pr = mode_ == Mode::ReflectionOnly ? 1.0f : R;
   const float pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
   BxdfSample s;

@@ -22,8 +22,9 @@ class DielectricBxdf {
   DielectricBxdf(float eta, float alpha, const Rgb& tint, Mode mode)
       : eta_(eta), ggx_(alpha), smooth_(alpha < GgxDistribution::kSmoothAlpha), tint_(tint), mode_(mode) {}
 
-  // KHR_materials_specular for ReflectionOnly: the reflectance curve is remapped from F0 to a
-  // tinted F0 x colour (capped at 1) and scaled by `weight`; (1, white) leaves it exact.
+  // KHR_materials_specular: the reflectance curve is remapped from F0 to a tinted F0 x colour
+  // (capped at 1) and scaled by `weight`; transmission gets 1 - max(F) (glTF's fresnel_mix).
+  // (1, white) leaves the exact curve.
   void set_specular(float weight, const Rgb& color) {
     spec_weight_ = weight;
     spec_color_ = color;
@@ -41,6 +42,14 @@ class DielectricBxdf {
   float reflectance(float cos_o) const;
 
  private:
+  // The reflectance that reflects (per channel) and the scalar that splits reflection from
+  // transmission (its largest channel; the plain Fresnel value without specular).
+  struct Split {
+    Rgb reflect;
+    float scalar;
+  };
+  Split split(float cos_o) const;
+
   // Microfacet normal for a reflection or refraction pair, in the +z hemisphere; false if none.
   bool half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const;
 

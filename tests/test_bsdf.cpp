@@ -303,6 +303,33 @@ TEST(Specular, ZeroSpecularLeavesPureDiffuseAndEnergyStaysBounded) {
   }
 }
 
+TEST(Specular, OnGlassSamplingMatchesPdfAndEnergyIsBounded) {
+  for (float alpha : {0.0f, 0.3f}) {
+    DielectricBxdf glass(1.5f, alpha, Rgb(1.0f), DielectricBxdf::Mode::Volume);
+    glass.set_specular(0.6f, Rgb(1.5f, 1.0f, 0.5f));
+    const Vec3 wo = direction(35.0f);
+    if (alpha > 0) {
+      const std::string why = test::chi_square_sphere(
+          [&](float ul, Vec2 u) -> std::optional<test::DirectionSample> {
+            const auto s = glass.sample(wo, ul, u);
+            if (!s) return std::nullopt;
+            return test::DirectionSample{s->wi, s->pdf};
+          },
+          [&](const Vec3& wi) { return glass.pdf(wo, wi); });
+      EXPECT_EQ(why, "");
+    }
+    const test::RunningStats a = albedo([&](float ul, Vec2 u) { return glass.sample(wo, ul, u); }, wo);
+    EXPECT_LE(a.mean(), 1.0 + test::kSigmas * a.standard_error()) << alpha;
+  }
+  // Specular 0 removes the reflection: smooth glass transmits all of it.
+  DielectricBxdf clear(1.5f, 0.0f, Rgb(1.0f), DielectricBxdf::Mode::Volume);
+  clear.set_specular(0.0f, Rgb(1.0f));
+  const auto s = clear.sample(direction(60.0f), 0.001f, {0.5f, 0.5f});
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(s->transmission);
+  EXPECT_NEAR(s->pdf, 1.0f, 1e-6f);
+}
+
 // --- Robustness ------------------------------------------------------------------------------
 
 TEST(Ggx, FiniteAtThePeakAndNormalisedForNarrowLobes) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 namespace prism {
 
@@ -22,6 +23,13 @@ constexpr uint64_t hash_values(uint64_t first, Ts... rest) {
   uint64_t h = mix64(first);
   ((h = hash_combine(h, static_cast<uint64_t>(rest))), ...);
   return h;
+}
+
+// The bit pattern of a float, for hashing values that must be matched exactly.
+inline uint64_t float_bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
 }
 
 }  // namespace prism

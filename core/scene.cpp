@@ -1,7 +1,6 @@
 #include "core/scene.h"
 
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -102,7 +101,6 @@ void Scene::alpha_filter(const RTCFilterFunctionNArguments* args) {
   const auto* data = static_cast<const AlphaFilterData*>(args->geometryUserPtr);
   const SceneDesc& desc = data->scene->desc_;
   const PrimitiveDesc& prim = desc.meshes[data->mesh].primitives[data->primitive];
-  const MaterialDesc& m = desc.material(prim.material);
   const uint32_t tri = RTCHitN_primID(args->hit, 1, 0);
   const float b1 = RTCHitN_u(args->hit, 1, 0), b2 = RTCHitN_v(args->hit, 1, 0), b0 = 1.0f - b1 - b2;
   Vec2 uv{0, 0};
@@ -111,25 +109,32 @@ void Scene::alpha_filter(const RTCFilterFunctionNArguments* args) {
     const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
     uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
   }
-  const float alpha = data->scene->alpha_(desc, prim.material, uv);
-  bool keep;
-  if (m.alpha_mode == MaterialDesc::AlphaMode::Mask) {
-    keep = alpha >= m.alpha_cutoff;
-  } else {
-    // Stochastic transparency, a pure function of this ray meeting this point: the same
-    // camera ray makes the same choice on every run and thread.
-    auto bits = [](float f) {
-      uint32_t u;
-      std::memcpy(&u, &f, 4);
-      return uint64_t(u);
-    };
-    RTCRayN* r = args->ray;  // Embree 3 declares the accessors on non-const rays
-    const uint64_t h = hash_values(bits(RTCRayN_org_x(r, 1, 0)), bits(RTCRayN_org_y(r, 1, 0)), bits(RTCRayN_org_z(r, 1, 0)),
-                                   bits(RTCRayN_dir_x(r, 1, 0)), bits(RTCRayN_dir_y(r, 1, 0)), bits(RTCRayN_dir_z(r, 1, 0)),
-                                   uint64_t(tri), bits(b1), bits(b2));
-    keep = float(h >> 40) * 0x1p-24f < alpha;
-  }
+  const auto bits = float_bits;
+  RTCRayN* r = args->ray;  // Embree 3 declares the accessors on non-const rays
+  const uint64_t h = hash_values(bits(RTCRayN_org_x(r, 1, 0)), bits(RTCRayN_org_y(r, 1, 0)), bits(RTCRayN_org_z(r, 1, 0)),
+                                 bits(RTCRayN_dir_x(r, 1, 0)), bits(RTCRayN_dir_y(r, 1, 0)), bits(RTCRayN_dir_z(r, 1, 0)),
+                                 uint64_t(tri), bits(b1), bits(b2));
+  const bool keep = data->scene->keeps_hit(prim.material, uv, h);
   if (!keep) args->valid[0] = 0;
+}
+
+bool Scene::keeps_hit(int material, Vec2 uv, uint64_t hash) const {
+  const MaterialDesc& m = desc_.material(material);
+  const float alpha = alpha_(desc_, material, uv);
+  if (m.alpha_mode == MaterialDesc::AlphaMode::Mask) return alpha >= m.alpha_cutoff;
+  // Stochastic transparency, a pure function of this ray meeting this point: the same camera ray
+  // makes the same choice on every run and thread.
+  return float(hash >> 40) * 0x1p-24f < alpha;
+}
+
+bool Scene::sphere_keeps_hit(const void* owner, int sphere, Vec2 uv, const Ray& ray, float t) {
+  const auto* scene = static_cast<const Scene*>(owner);
+  const int material = scene->desc_.spheres[sphere].material;
+  if (!scene->desc_.material(material).has_alpha()) return true;
+  const auto bits = float_bits;
+  const uint64_t h = hash_values(bits(ray.origin.x), bits(ray.origin.y), bits(ray.origin.z), bits(ray.dir.x),
+                                 bits(ray.dir.y), bits(ray.dir.z), uint64_t(sphere), bits(t));
+  return scene->keeps_hit(material, uv, h);
 }
 
 void Scene::attach_alpha_filter(RTCGeometry geom, int mesh, int primitive) {
@@ -192,7 +197,10 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
   }
   if (!desc_.spheres.empty()) {
     sphere_geom_id_ = static_cast<unsigned>(top_geometries_.size());
-    attach_spheres(device, top_, desc_.spheres, sphere_geom_id_);
+    sphere_geometry_.spheres = &desc_.spheres;
+    sphere_geometry_.owner = this;
+    if (alpha_) sphere_geometry_.keep = &Scene::sphere_keeps_hit;
+    attach_spheres(device, top_, sphere_geometry_, sphere_geom_id_);
     top_geometries_.push_back({});
   }
   rtcCommitScene(top_);

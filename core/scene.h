@@ -9,6 +9,7 @@
 #include "core/emitters.h"
 #include "core/ray.h"
 #include "core/scene_desc.h"
+#include "core/sphere_geometry.h"
 #include "core/surface_hit.h"
 
 namespace prism {
@@ -56,6 +57,11 @@ class Scene {
     int mesh, primitive;
   };
 
+  // Whether a hit on a material with alphaMode MASK or BLEND is kept: MASK by the cutoff, BLEND
+  // with probability alpha drawn from `hash` (a function of the ray and the hit point).
+  bool keeps_hit(int material, Vec2 uv, uint64_t hash) const;
+  static bool sphere_keeps_hit(const void* owner, int sphere, Vec2 uv, const Ray& ray, float t);
+
   void bake_single_use_meshes();
   void attach_alpha_filter(RTCGeometry geom, int mesh, int primitive);
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
@@ -68,6 +74,7 @@ class Scene {
   std::vector<RTCScene> mesh_scenes_;  // per mesh; null for meshes baked into the top level
   std::vector<TopGeometry> top_geometries_;
   unsigned sphere_geom_id_ = RTC_INVALID_GEOMETRY_ID;
+  SphereGeometry sphere_geometry_;
   Emitters emitters_;
   AlphaFunction alpha_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_filters_;

@@ -8,7 +8,7 @@
 
 namespace prism {
 
-double intersect_sphere(const Vec3& center, float radius, const Ray& ray) {
+bool sphere_roots(const Vec3& center, float radius, const Ray& ray, double& t0, double& t1) {
   const double ox = double(ray.origin.x) - center.x, oy = double(ray.origin.y) - center.y,
                oz = double(ray.origin.z) - center.z;
   const double dx = ray.dir.x, dy = ray.dir.y, dz = ray.dir.z;
@@ -17,12 +17,18 @@ double intersect_sphere(const Vec3& center, float radius, const Ray& ray) {
   const double r = radius;
   const double fx = ox - b / a * dx, fy = oy - b / a * dy, fz = oz - b / a * dz;
   const double disc = r * r - (fx * fx + fy * fy + fz * fz);  // = (b^2 - a c) / a
-  if (!(disc >= 0) || a == 0) return -1.0;
+  if (!(disc >= 0) || a == 0) return false;
   const double c = ox * ox + oy * oy + oz * oz - r * r;
   const double q = -(b + std::copysign(std::sqrt(a * disc), b));
-  double t0 = q != 0 ? c / q : 0.0;
-  double t1 = q / a;
+  t0 = q != 0 ? c / q : 0.0;
+  t1 = q / a;
   if (t0 > t1) std::swap(t0, t1);
+  return true;
+}
+
+double intersect_sphere(const Vec3& center, float radius, const Ray& ray) {
+  double t0, t1;
+  if (!sphere_roots(center, radius, ray, t0, t1)) return -1.0;
   if (t0 > ray.t_min && t0 < ray.t_max) return t0;
   if (t1 > ray.t_min && t1 < ray.t_max) return t1;
   return -1.0;
@@ -35,10 +41,10 @@ Vec2 sphere_uv(const Vec3& n) {
 
 namespace {
 
-const std::vector<SphereDesc>& spheres_of(void* user) { return *static_cast<const std::vector<SphereDesc>*>(user); }
+const SphereGeometry& geometry_of(void* user) { return *static_cast<const SphereGeometry*>(user); }
 
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
-  const SphereDesc& s = spheres_of(args->geometryUserPtr)[args->primID];
+  const SphereDesc& s = (*geometry_of(args->geometryUserPtr).spheres)[args->primID];
   // Widen by a few ulps so float rounding of centre +- radius never clips the sphere.
   const float pad = 4.0f * std::numeric_limits<float>::epsilon();
   const Vec3 extent = Vec3(s.radius) * (1.0f + pad) + abs(s.center) * pad;
@@ -54,15 +60,32 @@ Ray ray_of(const RTCRay& r) {
   return Ray{{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar};
 }
 
+// The nearest root in the ray's interval that the sphere's coverage keeps, or a negative value.
+float nearest_hit(const SphereGeometry& g, unsigned prim, const Ray& ray) {
+  const SphereDesc& s = (*g.spheres)[prim];
+  double roots[2];
+  if (!sphere_roots(s.center, s.radius, ray, roots[0], roots[1])) return -1.0f;
+  for (double t : roots) {
+    const auto tf = static_cast<float>(t);
+    if (!(tf > ray.t_min && tf < ray.t_max)) continue;
+    if (g.keep) {
+      const Vec3 local = ray.origin + ray.dir * tf - s.center;
+      const float len = length(local);
+      const Vec2 uv = sphere_uv(len > 0 ? local / len : Vec3(0, 1, 0));
+      if (!g.keep(g.owner, static_cast<int>(prim), uv, ray, tf)) continue;
+    }
+    return tf;
+  }
+  return -1.0f;
+}
+
 // rtcIntersect1 / rtcOccluded1 call these with N == 1.
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const SphereDesc& s = spheres_of(args->geometryUserPtr)[args->primID];
-  const double t = intersect_sphere(s.center, s.radius, ray_of(rayhit->ray));
-  if (t < 0) return;
-  const auto tf = static_cast<float>(t);
-  if (!(tf > rayhit->ray.tnear && tf < rayhit->ray.tfar)) return;
+  const float tf = nearest_hit(geometry_of(args->geometryUserPtr), args->primID, ray_of(rayhit->ray));
+  if (tf < 0) return;
+  const SphereDesc& s = (*geometry_of(args->geometryUserPtr).spheres)[args->primID];
   rayhit->ray.tfar = tf;
   rayhit->hit.u = 0;
   rayhit->hit.v = 0;
@@ -77,19 +100,16 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
 void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;
   auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const SphereDesc& s = spheres_of(args->geometryUserPtr)[args->primID];
-  const double t = intersect_sphere(s.center, s.radius, ray_of(*ray));
-  if (t < 0) return;
-  const auto tf = static_cast<float>(t);
-  if (tf > ray->tnear && tf < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
+  if (nearest_hit(geometry_of(args->geometryUserPtr), args->primID, ray_of(*ray)) >= 0)
+    ray->tfar = -std::numeric_limits<float>::infinity();
 }
 
 }  // namespace
 
-void attach_spheres(RTCDevice device, RTCScene scene, const std::vector<SphereDesc>& spheres, unsigned id) {
+void attach_spheres(RTCDevice device, RTCScene scene, const SphereGeometry& geometry, unsigned id) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(spheres.size()));
-  void* user = const_cast<std::vector<SphereDesc>*>(&spheres);
+  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(geometry.spheres->size()));
+  void* user = const_cast<SphereGeometry*>(&geometry);
   rtcSetGeometryUserData(geom, user);
   rtcSetGeometryBoundsFunction(geom, sphere_bounds, user);
   rtcSetGeometryIntersectFunction(geom, sphere_intersect);

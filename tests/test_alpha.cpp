@@ -74,5 +74,34 @@ TEST(Alpha, BlendTransmitsOneMinusAlphaDeterministically) {
   EXPECT_NEAR(stats.mean(), 0.7 * 2.0, test::kSigmas * stats.standard_error());
 }
 
+TEST(Alpha, SpheresCarryAlphaModesToo) {
+  // A sphere in front of an emitter: cut out entirely by MASK (alpha 0.2 < cutoff 0.5), or seen
+  // through with BLEND alpha 0.3, where the ray crosses two independent surfaces: 0.7^2 passes.
+  for (auto mode : {MaterialDesc::AlphaMode::Mask, MaterialDesc::AlphaMode::Blend}) {
+    SceneDesc desc;
+    const int shell = test::add_material(desc, Rgb(0.0f));
+    desc.materials[shell].base_alpha = mode == MaterialDesc::AlphaMode::Mask ? 0.2f : 0.3f;
+    desc.materials[shell].alpha_mode = mode;
+    test::add_sphere(desc, Vec3(0, 0, 1), 0.8f, shell);
+    test::add_quad(desc, Vec3(-50, -50, -1), Vec3(100, 0, 0), Vec3(0, 100, 0), test::add_material(desc, Rgb(0.0f), Rgb(1.0f)));
+    const Scene scene(std::move(desc), &material_alpha);
+    const PathIntegrator path(6, 1 << 20);
+    IndependentSampler sampler(1);
+    RayCounters counters;
+    Pcg32 rng(4, 5);
+    test::RunningStats stats;
+    for (int i = 0; i < 40000; ++i) {
+      const Ray ray{Vec3(0.2f * rng.next_float(), 0.2f * rng.next_float(), 3), Vec3(0, 0, -1)};
+      sampler.start_pixel_sample(0, 0, uint64_t(i));
+      stats.add(path.li(scene, ray, sampler, counters).radiance.x);
+    }
+    if (mode == MaterialDesc::AlphaMode::Mask) {
+      EXPECT_EQ(stats.mean(), 1.0);
+    } else {
+      EXPECT_NEAR(stats.mean(), 0.49, test::kSigmas * stats.standard_error());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prism

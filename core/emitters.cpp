@@ -69,7 +69,10 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
         e.p1 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]);
         e.p2 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]]);
         if (flip < 0) std::swap(e.p1, e.p2);  // keep the front face counter-clockwise in world space
-        e.area = 0.5f * length(cross(e.p1 - e.p0, e.p2 - e.p0));
+        const Vec3 n = cross(e.p1 - e.p0, e.p2 - e.p0);
+        e.area = 0.5f * length(n);
+        e.normal = e.area > 0 ? n / (2.0f * e.area) : Vec3(0.0f);
+        e.textured = mat.emissive_texture.present();
         emitters_.push_back(e);
         power.push_back(double(radiance) * e.area * kPi);
       }
@@ -162,14 +165,12 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, Vec2 u) const {
   EmitterSample s;
   s.p = e.p0 * b0 + e.p1 * b1 + e.p2 * b2;
   s.p_error = (abs(e.p0 * b0) + abs(e.p1 * b1) + abs(e.p2 * b2)) * kHitRelativeError;
-  const Vec3 n = cross(e.p1 - e.p0, e.p2 - e.p0);
-  const float len = length(n);
-  if (!(len > 0)) return s;
-  s.n = n / len;
+  if (!(e.area > 0)) return s;
+  s.n = e.normal;
   const InstanceDesc& inst = desc_->instances[e.instance];
   const PrimitiveDesc& prim = desc_->meshes[inst.mesh].primitives[e.primitive];
   s.material = prim.material;
-  if (!prim.uvs.empty()) {
+  if (e.textured && !prim.uvs.empty()) {
     // Barycentrics refer to the file's vertex order; undo the swap made for mirrored instances.
     const bool flipped = inst.object_to_world.flips_handedness();
     const Vec2& t0 = prim.uvs[prim.indices[3 * e.index]];

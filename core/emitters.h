@@ -61,7 +61,9 @@ class Emitters {
     int primitive = -1;
     uint32_t index = 0;  // triangle within the primitive, or sphere index
     Vec3 p0, p1, p2;     // triangles: world-space vertices, front face by winding x handedness
+    Vec3 normal;         // triangles: unit front-face normal
     float area = 0;
+    bool textured = false;  // the emission varies over the surface: uvs are needed
   };
 
   EmitterSample sample_triangle(const Emitter& e, Vec2 u) const;

@@ -43,9 +43,13 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
   }
   if (scene.occluded(shadow)) return {};
   // The shadow ray travels in the medium on wi's side of the surface.
-  MediumStack beyond = media;
-  if ((dot(wi, hit.ng) > 0) != from_front) beyond.cross(material, hit.material, from_front);
-  const Rgb tr = beer_lambert(beyond.sigma_a(), dist);
+  Rgb sigma = media.sigma_a();
+  if ((dot(wi, hit.ng) > 0) != from_front && material.has_volume()) {
+    MediumStack beyond = media;
+    beyond.cross(material, hit.material, from_front);
+    sigma = beyond.sigma_a();
+  }
+  const Rgb tr = beer_lambert(sigma, dist);
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf.pdf(wi));
   return f * incident * tr * (weight / ls.pdf);
 }

@@ -33,27 +33,34 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   }
   frame_ = Frame::from_normal(n);
   wo_ = frame_.to_local(wo);
+  wo_dot_ng_ = dot(wo, ng_);
   if (wo_.z == 0) valid_ = false;
 
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
   // glTF's fresnel_mix: the layer reflects F (per channel), the base below gets 1 - max(F).
-  const Rgb F = coat_.reflectance_rgb(wo_.z);
+  const Rgb F = m < 1 && t < 1 ? coat_.reflectance_rgb(wo_.z) : Rgb(0.0f);
   weight_[kMetal] = m;
   weight_[kDielectric] = (1 - m) * t;
   weight_[kCoat] = (1 - m) * (1 - t);
   weight_[kDiffuse] = (1 - m) * (1 - t) * std::max(0.0f, 1 - max_component(F));
   // Choose lobes by their albedo estimate at wo.
-  float pick[kLobes] = {m * std::max(luminance(metal_.reflectance(wo_.z)), 0.05f), weight_[kDielectric],
+  float pick[kLobes] = {m > 0 ? m * std::max(luminance(metal_.reflectance(wo_.z)), 0.05f) : 0.0f, weight_[kDielectric],
                         weight_[kCoat] * luminance(F), weight_[kDiffuse] * std::max(luminance(p.base_color), 0.05f)};
   if (wo_.z < 0) pick[kMetal] = pick[kCoat] = pick[kDiffuse] = 0;  // only a volume boundary is seen from below
   float total = 0;
   for (float v : pick) total += v;
   if (!(total > 0)) valid_ = false;
   delta_only_ = true;
+  int non_delta = 0;
   for (int k = 0; k < kLobes; ++k) {
     pick_[k] = total > 0 ? pick[k] / total : 0;
-    if (pick_[k] > 0 && !lobe_is_delta(k)) delta_only_ = false;
+    if (pick_[k] > 0 && !lobe_is_delta(k)) {
+      delta_only_ = false;
+      ++non_delta;
+      only_lobe_ = k;
+    }
   }
+  if (non_delta != 1) only_lobe_ = -1;
 }
 
 bool Bsdf::lobe_is_delta(int lobe) const {
@@ -86,7 +93,7 @@ float Bsdf::lobe_pdf(int lobe, const Vec3& wi) const {
 // Shading and geometric normals must agree on whether wi reflects or transmits, or light would
 // leak through the surface (Veach 1997, §5.3).
 bool Bsdf::consistent(const Vec3& wi_world, const Vec3& wi_local) const {
-  const float geometric = dot(wi_world, ng_) * dot(frame_.to_world(wo_), ng_);
+  const float geometric = dot(wi_world, ng_) * wo_dot_ng_;
   const float shading = wi_local.z * wo_.z;
   return geometric != 0 && shading != 0 && ((geometric > 0) == (shading > 0));
 }
@@ -95,6 +102,7 @@ Rgb Bsdf::eval(const Vec3& wi_world) const {
   if (!valid_ || delta_only_) return {};
   const Vec3 wi = frame_.to_local(wi_world);
   if (!consistent(wi_world, wi)) return {};
+  if (only_lobe_ >= 0) return lobe_f(only_lobe_, wi) * (weight_[only_lobe_] * std::abs(wi.z));
   Rgb f;
   for (int k = 0; k < kLobes; ++k)
     if (weight_[k] > 0 && !lobe_is_delta(k)) f += lobe_f(k, wi) * weight_[k];
@@ -105,6 +113,7 @@ float Bsdf::pdf(const Vec3& wi_world) const {
   if (!valid_ || delta_only_) return 0;
   const Vec3 wi = frame_.to_local(wi_world);
   if (!consistent(wi_world, wi)) return 0;
+  if (only_lobe_ >= 0) return pick_[only_lobe_] * lobe_pdf(only_lobe_, wi);
   float pdf = 0;
   for (int k = 0; k < kLobes; ++k)
     if (pick_[k] > 0 && !lobe_is_delta(k)) pdf += pick_[k] * lobe_pdf(k, wi);
@@ -142,7 +151,8 @@ std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
   out.transmission = s->transmission;
   out.eta = s->eta;
   if (!consistent(out.wi, s->wi)) return std::nullopt;
-  if (s->delta) {
+  if (s->delta || lobe == only_lobe_) {
+    // A delta lobe, or the only non-delta one: the mixture's value and density are this lobe's.
     out.f_cos = s->f * (weight_[lobe] * std::abs(s->wi.z));
     out.pdf = pick_[lobe] * s->pdf;
   } else {

@@ -48,7 +48,9 @@ class Bsdf {
 
   Frame frame_;
   Vec3 ng_;
-  Vec3 wo_;  // local
+  Vec3 wo_;           // local
+  float wo_dot_ng_;   // which side of the surface wo is on
+  int only_lobe_ = -1;  // the single non-delta lobe that can be picked, if there is just one
   float weight_[kLobes] = {};
   float pick_[kLobes] = {};
   ConductorBxdf metal_;

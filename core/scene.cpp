@@ -305,13 +305,15 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
   if (!prim.uvs.empty()) {
     const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
     hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
-    if (!prim.tangents.empty()) {
+    // Tangent frames serve normal maps only: other materials skip the work.
+    const bool wants_frame = desc_.material(prim.material).normal_texture.present();
+    if (wants_frame && !prim.tangents.empty()) {
       // A mirroring transform reverses the frame's handedness (bitangents map by M, but
       // cross(M^-T n, M t) flips with det M).
       const Vec3 t = prim.tangents[idx[0]] * b0 + prim.tangents[idx[1]] * b1 + prim.tangents[idx[2]] * b2;
       hit.tangent = world_space ? t : xf.vector(t);
       hit.tangent_sign = prim.tangent_signs[idx[0]] * (xf.flips_handedness() ? -1.0f : 1.0f);
-    } else {
+    } else if (wants_frame) {
       // No per-vertex frames: the triangle's own (already in world space).
       const TangentFrame f = triangle_tangent_frame(p0, p1, p2, t0, t1, t2);
       if (f.valid) {
@@ -319,8 +321,10 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
         hit.tangent_sign = dot(cross(hit.ns, f.tangent), f.up_image) < 0 ? -1.0f : 1.0f;
       }
     }
-    const float tangent_len = length(hit.tangent);
-    hit.tangent = tangent_len > 0 && std::isfinite(tangent_len) ? hit.tangent / tangent_len : Vec3(0.0f);
+    if (wants_frame) {
+      const float tangent_len = length(hit.tangent);
+      hit.tangent = tangent_len > 0 && std::isfinite(tangent_len) ? hit.tangent / tangent_len : Vec3(0.0f);
+    }
   }
   hit.material = prim.material;
   const int base = emitters_.triangle_base(instance, primitive);

@@ -39,6 +39,14 @@ inline Ray spawn_ray(const Vec3& p, const Vec3& err, const Vec3& n, const Vec3& 
   return Ray{offset_ray_origin(p, err, n, dir), dir, 0.0f, std::numeric_limits<float>::infinity()};
 }
 
+// A shadow ray from a surface point toward a light `distance` away along unit direction w (+inf
+// for lights at infinity), stopping just short of it.
+inline Ray spawn_ray_toward(const Vec3& p, const Vec3& err, const Vec3& n, const Vec3& w, float distance) {
+  Ray r = spawn_ray(p, err, n, w);
+  r.t_max = std::isinf(distance) ? distance : distance * (1.0f - kShadowEpsilon);
+  return r;
+}
+
 // A shadow ray between two surface points, each offset off its own surface toward the other;
 // the direction is unnormalised so t runs from 0 (from) to 1 (to).
 inline Ray spawn_ray_between(const Vec3& p_from, const Vec3& err_from, const Vec3& n_from, const Vec3& p_to,

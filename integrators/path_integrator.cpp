@@ -34,13 +34,8 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
   const Rgb f = bsdf.eval(wi);
   if (is_black(incident) || is_black(f)) return {};
   ++counters.shadow;
-  Ray shadow;
-  if (ls.delta || ls.infinite) {
-    shadow = spawn_ray(hit.p, hit.p_error, hit.ng, wi);
-    shadow.t_max = std::isinf(dist) ? dist : dist * (1.0f - kShadowEpsilon);
-  } else {
-    shadow = spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
-  }
+  const Ray shadow = ls.delta || ls.infinite ? spawn_ray_toward(hit.p, hit.p_error, hit.ng, wi, dist)
+                                             : spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
   if (scene.occluded(shadow)) return {};
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();

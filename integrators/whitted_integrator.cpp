@@ -37,9 +37,11 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
   const bool from_front = dot(wo, hit.ng) > 0;
   const bool volume = p.transmission > 0 && !p.thin_walled;
   const float eta = media.interface_eta(material, hit.material, from_front);
-  // Opaque and thin surfaces are two-sided: face the normals toward wo.
+  // The (normal-mapped) shading normal on the front face; opaque and thin surfaces are
+  // two-sided, so their normals then face wo.
   const Vec3 bent = shading_normal(desc, material, hit);
-  Vec3 ng = hit.ng, ns = dot(bent, hit.ng) < 0 ? -bent : bent;
+  const Vec3 n_front = dot(bent, hit.ng) < 0 ? -bent : bent;
+  Vec3 ng = hit.ng, ns = n_front;
   if (!from_front && !volume) {
     ng = -ng;
     ns = -ns;
@@ -50,7 +52,6 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
 
   // Fresnel-weighted shares of the mirror direction and the transmitted one, from the same
   // smooth interfaces the path tracer samples (a thin sheet reflects from both faces).
-  const Vec3 n_front = dot(bent, hit.ng) < 0 ? -bent : bent;
   const DielectricBxdf::Mode mode = volume ? DielectricBxdf::Mode::Volume
                                            : (t > 0 ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::ReflectionOnly);
   const float R = DielectricBxdf(eta, 0.0f, Rgb(1.0f), mode).reflectance(volume ? dot(wo, n_front) : std::abs(cos_o));
@@ -65,10 +66,8 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
       const PunctualIncidence in = punctual_incidence(light, hit.p);
       const float cos_i = dot(in.wi, ns);
       if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
-      Ray shadow = spawn_ray(hit.p, hit.p_error, ng, in.wi);
-      shadow.t_max = std::isinf(in.distance) ? in.distance : in.distance * (1.0f - kShadowEpsilon);
       ++counters.shadow;
-      if (!scene.occluded(shadow)) L += f * in.irradiance * cos_i;
+      if (!scene.occluded(spawn_ray_toward(hit.p, hit.p_error, ng, in.wi, in.distance))) L += f * in.irradiance * cos_i;
     }
   }
 

@@ -24,7 +24,8 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   // Interpolated normals can put wo below the shading hemisphere near silhouettes although it is
   // above the surface: the BSDF would be zero there (black rims). Bend the shading normal toward
   // wo just enough that wo sits above it again, by at most what the geometry allows.
-  const float s_side = dot(wo, ng_) < 0 ? -1.0f : 1.0f;  // +1 once two-sided surfaces are mirrored
+  wo_dot_ng_ = dot(wo, ng_);
+  const float s_side = wo_dot_ng_ < 0 ? -1.0f : 1.0f;  // +1 once two-sided surfaces are mirrored
   const Vec3 n_side = n * s_side;
   const float threshold = std::min(0.9f * std::abs(side), 0.01f);
   if (valid_ && dot(wo, n_side) < threshold) {
@@ -33,7 +34,6 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   }
   frame_ = Frame::from_normal(n);
   wo_ = frame_.to_local(wo);
-  wo_dot_ng_ = dot(wo, ng_);
   if (wo_.z == 0) valid_ = false;
 
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);

@@ -9,6 +9,7 @@ enum ExitCode : int {
   kExitUsage = 2,     // bad command-line arguments or settings
   kExitInput = 3,     // a scene, job file or image that cannot be used
   kExitOutput = 4,    // an output that cannot be written
+  kExitThreshold = 5, // `prism compare --threshold`: the image misses it
 };
 
 }  // namespace prism

@@ -1,6 +1,7 @@
 // prism command line: parses arguments and dispatches to the commands.
 #include <CLI/CLI.hpp>
 
+#include "apps/compare_command.h"
 #include "apps/exit_codes.h"
 #include "apps/render_command.h"
 
@@ -11,7 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success, 1 internal error, 2 usage error, 3 bad input (scene, job file, image),\n"
-      "4 output not writable.\n"
+      "4 output not writable, 5 compare: the image misses --threshold.\n"
       "Run 'prism COMMAND --help' for the options of a command.");
 
   RenderOptions render;
@@ -21,7 +22,22 @@ int main(int argc, char** argv) {
       ->required();
   cmd->add_option("-o,--output", render.output,
                   "Output EXR path (default: the job's \"output\", else SCENE's name with .exr in the current folder)");
-  cmd->add_option("--spp", render.settings.spp, "Samples per pixel (default 64, or the job's \"spp\")")->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", render.settings.spp,
+                  "Samples per pixel (default 64, or the job's \"spp\"); with --time or --noise, the most any pixel "
+                  "gets (default: no limit with --time, 4096 with --noise)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--time", render.time,
+                  "Wall-clock budget for rendering (after loading), e.g. 30s, 2m, 1h30m: progressive passes "
+                  "until it is spent; the image is complete after the first pass");
+  cmd->add_option("--noise", render.settings.noise_target,
+                  "Noise target: adaptive sampling stops each pixel when the relative standard error of its "
+                  "luminance is below this (e.g. 0.01)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-spp", render.settings.min_spp,
+                  "Samples every pixel gets before --noise judges it (default 16)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--sampler", render.settings.sampler,
+                  "Sampler: sobol (default; Owen-scrambled Sobol, lower error) or independent (uniform random)");
   cmd->add_option("--res", render.resolution,
                   "Image size WIDTHxHEIGHT, e.g. 1280x720 (default: 512 high, width from the camera's aspect ratio)");
   cmd->add_option("--camera", render.settings.camera,
@@ -33,6 +49,12 @@ int main(int argc, char** argv) {
   cmd->add_option("--max-diffuse-depth", render.settings.max_diffuse_depth,
                   "Maximum diffuse and glossy bounces within --max-depth; 0 = only direct light on them (default: "
                   "no separate limit)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rr-start-depth", render.settings.rr_start_depth,
+                  "Bounce from which Russian roulette may end paths (default 3; unbiased, trades noise for speed)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--clamp-indirect", render.settings.clamp_indirect,
+                  "Clamp each sample's indirect light to this maximum (biased; removes fireflies; default 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", render.settings.seed, "Random seed; the same seed gives the same image bits (default 0)");
   cmd->add_option("--threads", render.settings.threads, "Worker threads; 0 = all cores (default 0). The image does not depend on it")
@@ -50,6 +72,9 @@ int main(int argc, char** argv) {
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 
+  CompareOptions compare;
+  CLI::App* compare_cmd = add_compare_command(app, compare);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -57,5 +82,6 @@ int main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitUsage;
   }
   if (cmd->parsed()) return run_render(render);
+  if (compare_cmd->parsed()) return run_compare(compare);
   return kExitUsage;
 }

@@ -32,7 +32,7 @@ std::string ProgressBar::format(double fraction, double elapsed, int width) {
   return bar + pct + "  " + clock_text(elapsed) + " elapsed  ETA " + (fraction >= 1.0 ? "00:00" : clock_text(eta));
 }
 
-ProgressBar::ProgressBar(const std::atomic<uint64_t>& done, uint64_t total, std::string label)
+ProgressBar::ProgressBar(const std::atomic<uint64_t>& done, const std::atomic<uint64_t>& total, std::string label)
     : done_(done), total_(total), label_(std::move(label)), start_(std::chrono::steady_clock::now()),
       enabled_(::isatty(STDERR_FILENO) == 1) {
   if (enabled_) thread_ = std::thread([this] { run(); });
@@ -66,7 +66,8 @@ void ProgressBar::run() {
 
 void ProgressBar::draw() {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double fraction = total_ ? double(done_.load(std::memory_order_relaxed)) / double(total_) : 1.0;
+  const uint64_t total = total_.load(std::memory_order_relaxed);
+  const double fraction = total ? std::min(1.0, double(done_.load(std::memory_order_relaxed)) / double(total)) : 0.0;
   std::fprintf(stderr, "\r%s %s", label_.c_str(), format(fraction, elapsed, 30).c_str());
   std::fflush(stderr);
 }

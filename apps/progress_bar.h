@@ -13,8 +13,9 @@ namespace prism {
 
 class ProgressBar {
  public:
-  // Reads `done` out of `total` work units until stop(); draws on stderr only when it is a terminal.
-  ProgressBar(const std::atomic<uint64_t>& done, uint64_t total, std::string label);
+  // Reads `done` out of `total` work units (an estimate that may change) until stop(); draws on
+  // stderr only when it is a terminal.
+  ProgressBar(const std::atomic<uint64_t>& done, const std::atomic<uint64_t>& total, std::string label);
   ~ProgressBar();
   void stop();  // draws the final state and ends the line
 
@@ -26,7 +27,7 @@ class ProgressBar {
   void draw();
 
   const std::atomic<uint64_t>& done_;
-  uint64_t total_;
+  const std::atomic<uint64_t>& total_;
   std::string label_;
   std::chrono::steady_clock::time_point start_;
   bool enabled_;

@@ -7,25 +7,25 @@
 #include <memory>
 #include <stdexcept>
 
+#include "apps/command_errors.h"
 #include "apps/exit_codes.h"
 #include "apps/progress_bar.h"
 #include "core/camera.h"
 #include "core/renderer.h"
+#include "core/sampler_factory.h"
 #include "core/scene.h"
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
+#include "io/duration_text.h"
 #include "io/errors.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
+#include "io/render_attributes.h"
 #include "io/scene_source.h"
 #include "materials/material_eval.h"
 
 namespace prism {
 namespace {
-
-class UsageError : public std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 void parse_resolution(const std::string& text, int& width, int& height) {
   int w = 0, h = 0;
@@ -48,7 +48,16 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
     cli.width = w;
     cli.height = h;
   }
+  if (o.time) {
+    const std::optional<double> seconds = parse_duration(*o.time);
+    if (!seconds || !(*seconds > 0)) throw UsageError("--time: expected a duration such as 30s, 2m or 1h30m, got '" + *o.time + "'");
+    cli.time_budget = *seconds;
+  }
   cli.apply_to(s);
+  // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
+  const bool spp_given = o.settings.spp || (job && job->settings.spp);
+  if (!spp_given && s.time_budget > 0) s.spp = s.noise_target > 0 ? 4096 : (1 << 30);
+  else if (!spp_given && s.noise_target > 0) s.spp = 4096;
   if (s.spp < 1) throw UsageError("--spp must be at least 1");
   if (s.max_depth < 0) throw UsageError("--max-depth must be at least 0");
   if (s.threads < 0) throw UsageError("--threads must be at least 0 (0 = all cores)");
@@ -83,6 +92,12 @@ EnvironmentSpec environment_option(const RenderOptions& o) {
   return spec;
 }
 
+// "64" for a uniform count; "16-1024 (mean 97.3)" when pixels differ.
+std::string spp_summary(const RenderStats& stats) {
+  if (stats.spp_min == stats.spp_max) return std::to_string(stats.spp_min);
+  return fmt::format("{}-{} (mean {:.1f})", stats.spp_min, stats.spp_max, stats.spp_mean);
+}
+
 int render(const RenderOptions& o) {
   Diagnostics diag;
   LoadedScene loaded = load_scene_source(o.scene, diag, environment_option(o));
@@ -105,6 +120,7 @@ int render(const RenderOptions& o) {
   if (settings.width == 0 || settings.height == 0) default_resolution(camera_desc, settings.width, settings.height);
   std::unique_ptr<Integrator> integrator;
   try {
+    make_sampler(settings.sampler, 0);
     integrator = make_integrator(settings);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -125,7 +141,6 @@ int render(const RenderOptions& o) {
   const Camera camera(camera_desc, settings.width, settings.height);
   Film film(settings.width, settings.height);
   RenderProgress progress;
-  progress.samples_total = uint64_t(settings.width) * settings.height * settings.spp;
   RenderStats stats;
   {
     std::optional<ProgressBar> bar;
@@ -134,25 +149,18 @@ int render(const RenderOptions& o) {
   }
 
   const std::vector<float> rgba = film.resolve_rgba();
-  std::vector<ExrAttribute> attributes = {
-      {"prism/version", std::string(PRISM_VERSION)},
-      {"prism/scene", o.scene},
-      {"prism/camera", camera_desc.name},
-      {"prism/integrator", settings.integrator},
-      {"prism/spp", settings.spp},
-      {"prism/maxDepth", settings.max_depth},
-      {"prism/maxDiffuseDepth", settings.max_diffuse_depth},
-      {"prism/rrStartDepth", settings.rr_start_depth},
-      {"prism/seed", std::to_string(settings.seed)},
-      {"prism/sampler", std::string("independent")},
-      {"prism/nonFiniteSamples", double(stats.nonfinite_samples)},
-  };
+  std::vector<ExrAttribute> attributes = render_attributes(settings, stats);
+  attributes.push_back({"prism/version", std::string(PRISM_VERSION)});
+  attributes.push_back({"prism/scene", o.scene});
+  attributes.push_back({"prism/camera", camera_desc.name});
   if (scene->desc().environment.present) {
     attributes.push_back({"prism/environment", scene->desc().environment.source.empty()
                                                    ? std::string("constant")
                                                    : scene->desc().environment.source});
   }
-  const int replaced = write_exr(output, settings.width, settings.height, rgba, attributes);
+  std::vector<ExrChannel> extra;
+  if (stats.spp_min != stats.spp_max) extra.push_back({"spp", film.resolve_counts()});
+  const int replaced = write_exr(output, settings.width, settings.height, rgba, attributes, extra);
   if (preview) write_png_preview(*preview, settings.width, settings.height, rgba);
 
   if (!o.quiet) {
@@ -160,10 +168,16 @@ int render(const RenderOptions& o) {
     const double secs = stats.seconds > 0 ? stats.seconds : 1e-9;
     fmt::print("{}x{}, {} spp, {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s (camera {}, extension {}, shadow {}), "
                "BVH {:.3f} s, {} non-finite samples -> {}{}\n",
-               settings.width, settings.height, settings.spp, stats.seconds, double(stats.samples) / secs / 1e6,
+               settings.width, settings.height, spp_summary(stats), stats.seconds, double(stats.samples) / secs / 1e6,
                double(stats.rays.total()) / secs / 1e6, si(double(stats.rays.camera)), si(double(stats.rays.extension)),
                si(double(stats.rays.shadow)), scene->build_seconds(), stats.nonfinite_samples, output,
                preview ? " + " + *preview : "");
+    if (settings.time_budget > 0 || settings.noise_target > 0)
+      fmt::print("{} passes, estimated relative error {:.4f} (RMS over pixels){}\n", stats.passes, stats.relative_error,
+                 settings.noise_target > 0
+                     ? fmt::format(", {:.1f}% of pixels under the noise target {}", 100 * stats.converged_fraction,
+                                   settings.noise_target)
+                     : std::string());
   }
   return kExitOk;
 }
@@ -171,24 +185,7 @@ int render(const RenderOptions& o) {
 }  // namespace
 
 int run_render(const RenderOptions& options) {
-  try {
-    return render(options);
-  } catch (const UsageError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitUsage;
-  } catch (const InputError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitInput;
-  } catch (const OutputError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitOutput;
-  } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "prism: error: out of memory\n");
-    return kExitInternal;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "prism: internal error: {}\n", e.what());
-    return kExitInternal;
-  }
+  return run_reporting_errors([&] { return render(options); });
 }
 
 }  // namespace prism

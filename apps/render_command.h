@@ -14,6 +14,7 @@ struct RenderOptions {
   std::string scene;
   std::optional<std::string> output, preview;
   std::optional<std::string> resolution;  // "WxH", parsed into settings
+  std::optional<std::string> time;        // "30s", "2m", parsed into settings
   RenderSettingsOverride settings;
   std::optional<std::string> env;  // a map path, or "R,G,B" / "V" for a constant sky
   std::optional<float> env_intensity, env_rotation;

@@ -4,6 +4,7 @@
 
 #include "core/pcg32.h"
 #include "core/sampler.h"
+#include "core/sobol_sampler.h"
 #include "core/sampling.h"
 #include "core/scene.h"
 #include "core/spawn.h"
@@ -32,17 +33,30 @@ std::vector<Ray> random_rays(size_t n) {
   return rays;
 }
 
-void BM_IndependentSampler(benchmark::State& state) {
-  IndependentSampler s(7);
+// One path's worth of draws in the integrator's pattern: pixel jitter, then per bounce an emitter
+// pick, a point on it, a lobe, a direction and a roulette decision (four bounces).
+template <typename SamplerType>
+void BM_SamplerPath(benchmark::State& state) {
+  SamplerType s(7);
   uint64_t i = 0;
   for (auto _ : state) {
-    s.start_pixel_sample(int(i & 511), int((i >> 9) & 511), i);
-    benchmark::DoNotOptimize(s.next_1d() + s.next_1d() + s.next_1d() + s.next_1d());
+    s.start_pixel_sample(int((i >> 6) & 511), int((i >> 15) & 511), i & 63);
+    auto add = [](Vec2 v) { return v.x + v.y; };
+    float sum = add(s.next_2d());
+    for (int bounce = 0; bounce < 4; ++bounce) {
+      sum += s.next_1d();
+      sum += add(s.next_2d());
+      sum += s.next_1d();
+      sum += add(s.next_2d());
+      sum += s.next_1d();
+    }
+    benchmark::DoNotOptimize(sum);
     ++i;
   }
-  state.SetItemsProcessed(int64_t(state.iterations()) * 4);
+  state.SetItemsProcessed(int64_t(state.iterations()) * 21);  // dimensions drawn
 }
-BENCHMARK(BM_IndependentSampler);
+BENCHMARK(BM_SamplerPath<IndependentSampler>);
+BENCHMARK(BM_SamplerPath<SobolSampler>);
 
 // The glTF BSDF for a given material, at a fixed shading frame and outgoing direction.
 void bsdf_sample_benchmark(benchmark::State& state, const SurfaceParams& params) {

@@ -1,5 +1,6 @@
 #include "core/film.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -13,18 +14,34 @@ Film::Film(int width, int height) : width_(width), height_(height) {
 }
 
 void Film::mean(int x, int y, float rgba[4]) const {
-  const Pixel& px = pixels_[size_t(y) * width_ + x];
+  const Pixel& px = pixel(x, y);
   const double inv = px.count ? 1.0 / double(px.count) : 0.0;
-  rgba[0] = static_cast<float>(px.r * inv);
-  rgba[1] = static_cast<float>(px.g * inv);
-  rgba[2] = static_cast<float>(px.b * inv);
-  rgba[3] = static_cast<float>(px.a * inv);
+  for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(px.sum[c] * inv);
+}
+
+Rgb Film::variance_of_mean(int x, int y) const {
+  const Pixel& px = pixel(x, y);
+  if (px.count < 2) return Rgb(0.0f);
+  const double n = double(px.count);
+  float v[3];
+  for (int c = 0; c < 3; ++c) {
+    // Sum-of-squares form in double: relative cancellation error ~1e-16 * n, far below the noise.
+    const double sample_variance = std::max(0.0, (px.sum_sq[c] - px.sum[c] * px.sum[c] / n) / (n - 1));
+    v[c] = static_cast<float>(sample_variance / n);
+  }
+  return {v[0], v[1], v[2]};
 }
 
 std::vector<float> Film::resolve_rgba() const {
   std::vector<float> out(size_t(width_) * height_ * 4);
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x) mean(x, y, &out[(size_t(y) * width_ + x) * 4]);
+  return out;
+}
+
+std::vector<float> Film::resolve_counts() const {
+  std::vector<float> out(pixels_.size());
+  for (size_t i = 0; i < pixels_.size(); ++i) out[i] = static_cast<float>(pixels_[i].count);
   return out;
 }
 

@@ -9,11 +9,18 @@ namespace prism {
 
 struct RenderSettings {
   int width = 0, height = 0;   // 0 = from the camera's aspect ratio (see default_resolution)
-  int spp = 64;                // samples per pixel
+  int spp = 64;                // samples per pixel; the most any pixel gets under a time or noise budget
   int max_depth = 8;           // bounces; 0 = emitted light seen directly only
   int max_diffuse_depth = -1;  // non-delta (diffuse and glossy) bounces; -1 = no limit of its own,
                                // 0 = direct light only on such surfaces (mirrors and glass go on)
   int rr_start_depth = 3;      // Russian roulette from this bounce on
+  float clamp_indirect = 0;    // > 0: each sample's indirect light is scaled down to this maximum
+                               // component (biased, removes fireflies); 0 = off
+  std::string sampler = "sobol";
+  // Budgets beyond a fixed spp, stopping at whichever is met first (0 = not set):
+  double time_budget = 0;      // seconds of rendering: progressive passes until spent
+  double noise_target = 0;     // relative standard error per pixel: adaptive sampling
+  int min_spp = 16;            // samples every pixel gets before the noise target is judged
   uint64_t seed = 0;
   int tile_size = 16;
   int threads = 0;             // 0 = all hardware threads
@@ -23,9 +30,11 @@ struct RenderSettings {
 
 // Settings given by a job file or on the command line; unset fields leave the settings alone.
 struct RenderSettingsOverride {
-  std::optional<int> width, height, spp, max_depth, max_diffuse_depth, threads;
+  std::optional<int> width, height, spp, max_depth, max_diffuse_depth, rr_start_depth, min_spp, threads;
+  std::optional<float> clamp_indirect;
+  std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
-  std::optional<std::string> camera, integrator;
+  std::optional<std::string> camera, integrator, sampler;
 
   void apply_to(RenderSettings& s) const {
     if (width) s.width = *width;
@@ -33,7 +42,13 @@ struct RenderSettingsOverride {
     if (spp) s.spp = *spp;
     if (max_depth) s.max_depth = *max_depth;
     if (max_diffuse_depth) s.max_diffuse_depth = *max_diffuse_depth;
+    if (rr_start_depth) s.rr_start_depth = *rr_start_depth;
+    if (min_spp) s.min_spp = *min_spp;
+    if (clamp_indirect) s.clamp_indirect = *clamp_indirect;
+    if (time_budget) s.time_budget = *time_budget;
+    if (noise_target) s.noise_target = *noise_target;
     if (threads) s.threads = *threads;
+    if (sampler) s.sampler = *sampler;
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;
     if (integrator) s.integrator = *integrator;

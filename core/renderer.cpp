@@ -8,6 +8,10 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
+
+#include "core/sample_schedule.h"
+#include "core/sampler_factory.h"
 
 namespace prism {
 
@@ -16,33 +20,37 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
   const int width = film.width(), height = film.height();
   const int tile = std::max(1, settings.tile_size);
   const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
-  const auto spp = static_cast<uint64_t>(std::max(0, settings.spp));
-  if (progress) progress->samples_total = uint64_t(width) * height * spp;
+  make_sampler(settings.sampler, settings.seed);  // reject an unknown name before any work
 
   RenderStats stats;
   std::mutex stats_mutex;
   const auto start = std::chrono::steady_clock::now();
+  std::vector<uint32_t> target;  // each pixel's sample count at the end of the current pass
+  std::atomic<uint64_t> samples{0};
 
   auto render_tile = [&](int tile_index) {
     const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
-    IndependentSampler sampler(settings.seed);
+    const auto sampler = make_sampler(settings.sampler, settings.seed);
     RayCounters counters;
-    uint64_t nonfinite = 0;
+    uint64_t nonfinite = 0, taken = 0;
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        for (uint64_t s = 0; s < spp; ++s) {
-          sampler.start_pixel_sample(x, y, s);
-          const Vec2 jitter = sampler.next_2d();  // box filter: uniform in the pixel
+        const uint64_t end = target[size_t(y) * width + x];
+        for (uint64_t s = film.sample_count(x, y); s < end; ++s) {
+          sampler->start_pixel_sample(x, y, s);
+          const Vec2 jitter = sampler->next_2d();  // box filter: uniform in the pixel
           const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-          const RadianceSample L = integrator.li(scene, ray, sampler, counters);
-          if (is_finite(L.radiance) && std::isfinite(L.alpha)) {
-            film.add_sample(x, y, L.radiance, L.alpha);
-          } else {
-            ++nonfinite;
-          }
+          const RadianceSample L = integrator.li(scene, ray, *sampler, counters);
+          // A non-finite estimate counts as a black sample, so counts stay sample indices.
+          const bool finite = is_finite(L.radiance) && std::isfinite(L.alpha);
+          film.add_sample(x, y, finite ? L.radiance : Rgb(0.0f), finite ? L.alpha : 0.0f);
+          nonfinite += !finite;
+          ++taken;
         }
-        if (progress) progress->samples_done.fetch_add(spp, std::memory_order_relaxed);
+        if (progress) progress->samples_done.fetch_add(taken, std::memory_order_relaxed);
+        samples.fetch_add(taken, std::memory_order_relaxed);
+        taken = 0;
       }
     }
     std::lock_guard lock(stats_mutex);
@@ -50,20 +58,44 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     stats.nonfinite_samples += nonfinite;
   };
 
-  auto run = [&] {
+  auto run_pass = [&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
                       [&](const tbb::blocked_range<int>& r) {
                         for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
                       });
   };
-  if (settings.threads > 0) {
-    tbb::task_arena arena(settings.threads);
-    arena.execute(run);
-  } else {
-    run();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  SampleSchedule schedule(settings, width, height);
+  std::optional<tbb::task_arena> arena;
+  if (settings.threads > 0) arena.emplace(settings.threads);
+  while (schedule.next_pass(film, elapsed(), samples.load(), target)) {
+    if (progress)
+      progress->samples_total.store(std::max(schedule.expected_samples(), samples.load()), std::memory_order_relaxed);
+    if (arena) arena->execute(run_pass);
+    else run_pass();
   }
-  stats.samples = uint64_t(width) * height * spp;
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  stats.samples = samples;
+  stats.passes = schedule.passes() - 1;
+  stats.seconds = elapsed();
+  schedule.update_floor(film);
+  stats.spp_min = ~uint64_t(0);
+  double error_sq = 0;
+  uint64_t converged = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const uint64_t n = film.sample_count(x, y);
+      stats.spp_min = std::min(stats.spp_min, n);
+      stats.spp_max = std::max(stats.spp_max, n);
+      const double e = schedule.relative_error(film, x, y);
+      error_sq += e * e;
+      converged += settings.noise_target > 0 && e <= settings.noise_target;
+    }
+  const double pixels = double(width) * height;
+  stats.spp_mean = double(samples) / pixels;
+  stats.relative_error = std::sqrt(error_sq / pixels);
+  stats.converged_fraction = double(converged) / pixels;
   return stats;
 }
 

@@ -16,19 +16,26 @@ namespace prism {
 // Progress counters another thread may read while a render runs.
 struct RenderProgress {
   std::atomic<uint64_t> samples_done{0};
-  uint64_t samples_total = 0;
+  std::atomic<uint64_t> samples_total{0};  // an estimate that may change between passes under a budget
 };
 
 struct RenderStats {
   RayCounters rays;
   uint64_t samples = 0;             // camera paths traced
-  uint64_t nonfinite_samples = 0;   // NaN or Inf estimates, dropped and counted
+  uint64_t nonfinite_samples = 0;   // NaN or Inf estimates, counted as black samples
   double seconds = 0;
+  int passes = 0;                   // progressive passes (1 for a fixed spp)
+  uint64_t spp_min = 0, spp_max = 0;
+  double spp_mean = 0;
+  double relative_error = 0;        // root mean square over pixels of the estimated relative error
+  double converged_fraction = 0;    // pixels that met the noise target (adaptive renders)
 };
 
-// Renders settings.spp samples for every pixel of `film`. Each sample's random numbers are a
-// function of (pixel, sample index, dimension, seed), and each pixel's samples are summed in
-// index order by one thread, so the image is identical for any thread count or tile size.
+// Renders `film` to the budgets of `settings`: settings.spp samples per pixel, or progressive
+// passes under a time budget or noise target (see SampleSchedule). Each sample's random numbers
+// are a function of (pixel, sample index, dimension, seed), and each pixel's samples are summed in
+// index order by one thread, so the image is identical for any thread count or tile size, and a
+// progressive render equals a fixed-spp render of the counts it reached.
 RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
                    const RenderSettings& settings, Film& film, RenderProgress* progress = nullptr);
 

@@ -56,7 +56,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   RadianceSample out;
-  Rgb L(0.0f), beta(1.0f);
+  Rgb direct(0.0f), indirect(0.0f), beta(1.0f);  // light after at most one scattering event, and after more
   float eta_scale = 1.0f;  // undoes the 1/eta^2 radiance scaling in Russian roulette decisions
   Ray ray = camera_ray;
   ++counters.camera;
@@ -76,7 +76,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       if (env.present()) {
         const Vec3 w = normalize(ray.dir);
         const float weight = prev_delta ? 1.0f : power_heuristic(prev_bsdf_pdf, emitters.environment_pdf(w));
-        L += beta * env.radiance(w) * beer_lambert(media.sigma_a(), kInfinity) * weight;
+        (depth <= 1 ? direct : indirect) += beta * env.radiance(w) * beer_lambert(media.sigma_a(), kInfinity) * weight;
       }
       break;
     }
@@ -91,7 +91,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       if (!is_black(Le)) {
         float w = 1.0f;
         if (!prev_delta) w = power_heuristic(prev_bsdf_pdf, emitters.pdf(hit.emitter, prev_p, hit.p, hit.ng));
-        L += beta * Le * w;
+        (depth <= 1 ? direct : indirect) += beta * Le * w;
       }
     }
     if (depth >= max_depth_ || last_vertex) break;
@@ -104,7 +104,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
     if (!emitters.empty() && !bsdf.is_delta()) {
       const float u_pick = sampler.next_1d();
       const Vec2 u_point = sampler.next_2d();
-      L += beta * direct_light(scene, hit, bsdf, media, material, from_front, u_pick, u_point, counters);
+      (depth == 0 ? direct : indirect) += beta * direct_light(scene, hit, bsdf, media, material, from_front, u_pick, u_point, counters);
     }
 
     const float u_lobe = sampler.next_1d();
@@ -132,7 +132,11 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
     }
     ++counters.extension;
   }
-  out.radiance = L;
+  if (clamp_indirect_ > 0) {
+    const float m = max_component(indirect);
+    if (m > clamp_indirect_) indirect *= clamp_indirect_ / m;
+  }
+  out.radiance = direct + indirect;
   return out;
 }
 

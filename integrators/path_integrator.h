@@ -10,9 +10,14 @@ namespace prism {
 class PathIntegrator final : public Integrator {
  public:
   // max_depth: bounces (0 = directly visible emission only); Russian roulette starts at
-  // bounce rr_start_depth; max_diffuse_depth limits non-delta bounces (-1: no limit of its own).
-  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1)
-      : max_depth_(max_depth), rr_start_depth_(rr_start_depth), max_diffuse_depth_(max_diffuse_depth) {}
+  // bounce rr_start_depth; max_diffuse_depth limits non-delta bounces (-1: no limit of its own);
+  // clamp_indirect > 0 scales each sample's indirect light (after two or more scattering events)
+  // down to that maximum component, trading bias for fewer fireflies.
+  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1, float clamp_indirect = 0)
+      : max_depth_(max_depth),
+        rr_start_depth_(rr_start_depth),
+        max_diffuse_depth_(max_diffuse_depth),
+        clamp_indirect_(clamp_indirect) {}
 
   RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                     RayCounters& counters) const override;
@@ -25,6 +30,7 @@ class PathIntegrator final : public Integrator {
   int max_depth_;
   int rr_start_depth_;
   int max_diffuse_depth_;
+  float clamp_indirect_;
 };
 
 }  // namespace prism

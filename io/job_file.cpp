@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/duration_text.h"
 #include "io/errors.h"
 #include "io/image_decode.h"
 
@@ -27,7 +28,8 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "materials", "spheres", "lights", "environment"});
+                             "integrator", "sampler", "time", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
+                             "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
       const std::filesystem::path path(p);
@@ -58,6 +60,22 @@ class JobParser {
       else job.settings.camera = std::to_string(int_at(c, "$.camera", 0, std::numeric_limits<int>::max()));
     }
     if (root.contains("integrator")) job.settings.integrator = string_at(root["integrator"], "$.integrator");
+    if (root.contains("sampler")) job.settings.sampler = string_at(root["sampler"], "$.sampler");
+    if (root.contains("time")) {
+      const json& t = root["time"];
+      std::optional<double> seconds;
+      if (t.is_number()) seconds = t.get<double>();
+      else if (t.is_string()) seconds = parse_duration(t.get<std::string>());
+      if (!seconds || !(*seconds > 0) || !std::isfinite(*seconds))
+        fail("$.time", "expected a positive duration in seconds, or text such as \"30s\", \"2m\", \"1h30m\"");
+      job.settings.time_budget = *seconds;
+    }
+    if (root.contains("noise")) job.settings.noise_target = number_at(root["noise"], "$.noise", 1e-6, 1e6);
+    if (root.contains("min_spp")) job.settings.min_spp = int_at(root["min_spp"], "$.min_spp", 1, 1 << 30);
+    if (root.contains("rr_start_depth"))
+      job.settings.rr_start_depth = int_at(root["rr_start_depth"], "$.rr_start_depth", 1, 1 << 30);
+    if (root.contains("clamp_indirect"))
+      job.settings.clamp_indirect = number_at(root["clamp_indirect"], "$.clamp_indirect", 0, 3.0e38);
     if (root.contains("materials")) {
       const json& m = root["materials"];
       expect_object(m, "$.materials");

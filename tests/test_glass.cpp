@@ -97,6 +97,7 @@ TEST(Glass, IndexOneIsInvisible) {
   RenderSettings settings;
   settings.width = settings.height = 24;
   settings.spp = 64;
+  settings.sampler = "independent";  // the F test models pixel errors as independent Monte Carlo noise
   const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
   // Two seeds of each scene: differences between seeds measure the noise pixel by pixel.
   std::vector<float> images[2][2];

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "gltf_writer.h"
+#include "io/duration_text.h"
 #include "io/errors.h"
 #include "io/job_file.h"
 #include "io/scene_source.h"
@@ -29,6 +30,30 @@ TEST(JobFile, ReadsSettingsAndResolvesPathsAgainstItsFolder) {
   EXPECT_TRUE(diag.empty());
 }
 
+TEST(JobFile, BudgetsAndQualityKnobs) {
+  Diagnostics diag;
+  const JobFile job = parse(R"({"sampler": "independent", "time": "1m30s", "noise": 0.01, "min_spp": 8,
+                                "rr_start_depth": 5, "clamp_indirect": 10})", diag);
+  RenderSettings s;
+  job.settings.apply_to(s);
+  EXPECT_EQ(s.sampler, "independent");
+  EXPECT_EQ(s.time_budget, 90.0);
+  EXPECT_FLOAT_EQ(float(s.noise_target), 0.01f);
+  EXPECT_EQ(s.min_spp, 8);
+  EXPECT_EQ(s.rr_start_depth, 5);
+  EXPECT_EQ(s.clamp_indirect, 10.0f);
+  EXPECT_TRUE(diag.lines().empty());
+}
+
+TEST(Durations, AsUsersWriteThem) {
+  EXPECT_EQ(parse_duration("90"), 90.0);
+  EXPECT_EQ(parse_duration("90s"), 90.0);
+  EXPECT_EQ(parse_duration("2.5m"), 150.0);
+  EXPECT_EQ(parse_duration("1h30m"), 5400.0);
+  EXPECT_EQ(parse_duration("250ms"), 0.25);
+  for (const char* bad : {"", "soon", "-5s", "5x", "1m30", " 5s", "nan", "inf"}) EXPECT_FALSE(parse_duration(bad)) << bad;
+}
+
 TEST(JobFile, UnknownKeysWarn) {
   Diagnostics diag;
   parse(R"({"spp": 4, "sppp": 5, "materials": {"m": {"colour": [1,0,0]}}})", diag);
@@ -47,6 +72,9 @@ TEST(JobFile, TypeErrorsNameTheKeyAndType) {
       {R"({"spp": 0})", "$.spp", "between 1"},
       {R"({"resolution": [10]})", "$.resolution", "[width, height]"},
       {R"({"seed": -1})", "$.seed", "non-negative"},
+      {R"({"time": "soon"})", "$.time", "positive duration"},
+      {R"({"time": 0})", "$.time", "positive duration"},
+      {R"({"noise": -0.1})", "$.noise", "between"},
       {R"({"spheres": [{"center": [0, 0], "radius": 1}]})", "$.spheres[0].center", "3 numbers"},
       {R"({"spheres": [{"center": [0, 0, 0], "radius": -1}]})", "$.spheres[0].radius", "between 0"},
       {R"({"spheres": [{"center": [0, 0, 0]}]})", "$.spheres[0]", "radius"},

@@ -1,0 +1,44 @@
+// Image error metrics between a test image and a reference: RMSE, relative MSE, PSNR, maximum difference.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace prism {
+
+// An image as interleaved float channels, top row first.
+struct FloatImage {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
+};
+
+struct ChannelError {
+  double mean_test = 0, mean_reference = 0;
+  double mse = 0;      // mean of (t - r)^2
+  double rel_mse = 0;  // mean of (t - r)^2 / (r^2 + epsilon)
+  double max_abs = 0;  // largest |t - r|
+};
+
+struct ImageComparison {
+  std::array<ChannelError, 3> channel;  // R, G, B (a single-channel image fills all three)
+  ChannelError all;                     // over the three colour channels together
+  double rmse = 0;
+  double psnr = 0;                      // dB against a peak of 1 (display white); infinite when equal
+  uint64_t nonfinite_test = 0, nonfinite_reference = 0;  // pixels left out of every figure
+  uint64_t pixels = 0;                  // pixels compared
+};
+
+// relMSE's epsilon keeps near-black reference pixels from dominating (Rousselle, Knaus and
+// Zwicker, "Adaptive sampling and reconstruction using greedy error minimization", 2011).
+inline constexpr double kRelMseEpsilon = 1e-2;
+
+// Compares the colour channels of `test` with `reference`, which must be the same size.
+// Throws std::invalid_argument when the sizes differ.
+ImageComparison compare_images(const FloatImage& test, const FloatImage& reference);
+
+// Per-pixel relative error sqrt(mean over R,G,B of (t - r)^2 / (r^2 + epsilon)), 0 for pixels with a
+// non-finite value; for difference images.
+std::vector<float> relative_error_map(const FloatImage& test, const FloatImage& reference);
+
+}  // namespace prism

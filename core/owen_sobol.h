@@ -1,0 +1,81 @@
+// Owen-scrambled Sobol points by hashing (Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace prism {
+
+constexpr uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// A random bijection in which each output bit depends only on the input bits below it (Laine and
+// Karras 2011), with the stronger constants of N. Vegdahl, "Building a better LK hash" (2021).
+// XOR with a multiple by an even number, adding, and multiplying by an odd number each keep that
+// property, so the composition is a hash-driven base-2 Owen scramble of the bit-reversed value.
+constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+  x ^= x * 0x3d20adeau;
+  x += seed;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x05526c56u;
+  x ^= x * 0x53a22864u;
+  return x;
+}
+
+// Nested uniform (Owen) scrambling of a 32-bit binary fraction: bit k of the result is flipped by
+// a function of the bits above it, so every dyadic interval maps onto one of the same size.
+constexpr uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
+}
+
+// Sobol's second dimension from the primitive polynomial x + 1: direction numbers
+// v_k = v_(k-1) xor v_(k-1) >> 1 from v_0 = 1/2, Pascal's triangle mod 2. With the first dimension
+// (van der Corput's radical inverse, the bit-reversed index) it forms a (0,2)-sequence: any 2^m
+// consecutive points aligned to a multiple of 2^m put one point in every dyadic box of area 2^-m.
+//
+// The tables work on the bit-reversed index r = reverse_bits(i), which is dimension 0 itself,
+// and hold the result bit-reversed too, ready for the scramble: byte b of r selects the XOR of
+// the columns for index bits 31-8b-7 .. 31-8b.
+struct SobolDim1Tables {
+  std::array<std::array<uint32_t, 256>, 4> table{};
+  constexpr SobolDim1Tables() {
+    std::array<uint32_t, 32> column{};  // column[k]: index bit k's contribution, bit-reversed
+    uint32_t v = 0x80000000u;
+    for (int k = 0; k < 32; ++k) {
+      column[k] = reverse_bits(v);
+      v ^= v >> 1;
+    }
+    for (int b = 0; b < 4; ++b)
+      for (uint32_t byte = 0; byte < 256; ++byte) {
+        uint32_t x = 0;
+        for (int j = 0; j < 8; ++j)
+          if (byte & (1u << j)) x ^= column[31 - (8 * b + j)];
+        table[b][byte] = x;
+      }
+  }
+};
+inline constexpr SobolDim1Tables kSobolDim1{};
+
+// reverse_bits(sobol_dim1(reverse_bits(r))): dimension 1 of index reverse_bits(r), bit-reversed.
+constexpr uint32_t sobol_dim1_reversed(uint32_t r) {
+  return kSobolDim1.table[0][r & 0xff] ^ kSobolDim1.table[1][(r >> 8) & 0xff] ^ kSobolDim1.table[2][(r >> 16) & 0xff] ^
+         kSobolDim1.table[3][r >> 24];
+}
+
+// Reference forms, for tests: dimension 1 from its direction numbers, bit by bit.
+constexpr uint32_t sobol_dim1(uint32_t index) {
+  uint32_t x = 0, v = 0x80000000u;
+  for (; index; index >>= 1, v ^= v >> 1)
+    if (index & 1u) x ^= v;
+  return x;
+}
+
+// A 32-bit binary fraction as a float in [0, 1): the top 24 bits, exactly representable.
+constexpr float fraction_to_float(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
+
+}  // namespace prism

@@ -1,0 +1,125 @@
+#include "core/sample_schedule.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace prism {
+namespace {
+
+// Rec. 709 luminance weights.
+constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
+
+double luminance(const float rgb[3]) { return kLuminance[0] * rgb[0] + kLuminance[1] * rgb[1] + kLuminance[2] * rgb[2]; }
+
+}  // namespace
+
+SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int height)
+    : max_spp_(uint32_t(std::max(1, settings.spp))),
+      min_spp_(uint32_t(std::clamp(settings.min_spp, 1, std::max(1, settings.spp)))),
+      time_budget_(settings.time_budget),
+      noise_target_(settings.noise_target),
+      pixels_(size_t(width) * size_t(height)),
+      expected_samples_(uint64_t(width) * height * max_spp_),
+      converged_(pixels_, 0) {}
+
+void SampleSchedule::update_floor(const Film& film) {
+  double sum = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      float rgba[4];
+      film.mean(x, y, rgba);
+      sum += luminance(rgba);
+    }
+  floor_ = std::max(0.01 * sum / double(pixels_), 1e-30);
+}
+
+double SampleSchedule::relative_error(const Film& film, int x, int y) const {
+  float rgba[4];
+  film.mean(x, y, rgba);
+  const Rgb v = film.variance_of_mean(x, y);
+  const double standard_error =
+      kLuminance[0] * std::sqrt(v.x) + kLuminance[1] * std::sqrt(v.y) + kLuminance[2] * std::sqrt(v.z);
+  return standard_error / std::max(luminance(rgba), floor_);
+}
+
+bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target) {
+  target.resize(pixels_);
+  const int width = film.width();
+  ++passes_;
+  if (!progressive()) {
+    if (passes_ > 1) return false;
+    std::fill(target.begin(), target.end(), max_spp_);
+    return true;
+  }
+  if (passes_ == 1) {
+    // Every pixel first gets the minimum the noise estimate needs (one sample under a time budget
+    // alone, so the image is complete as soon as possible).
+    std::fill(target.begin(), target.end(), adaptive() ? min_spp_ : 1u);
+    if (time_budget_ > 0) expected_samples_ = pixels_;
+    return true;
+  }
+
+  if (adaptive()) update_floor(film);
+  uint64_t wanted = 0;
+  for (size_t i = 0; i < pixels_; ++i) {
+    const int x = int(i % size_t(width)), y = int(i / size_t(width));
+    const auto count = uint32_t(std::min<uint64_t>(film.sample_count(x, y), max_spp_));
+    uint32_t next = count;
+    if (count < max_spp_ && !converged_[i]) {
+      if (adaptive()) {
+        const double error = relative_error(film, x, y);
+        if (error <= noise_target_) {
+          converged_[i] = 1;
+        } else {
+          // Standard error falls as 1/sqrt(n): aim 10% past the estimate, at most doubling, since
+          // the estimate itself is noisy.
+          const double needed = std::ceil(double(count) * (error / noise_target_) * (error / noise_target_) * 1.1);
+          next = uint32_t(std::clamp<double>(needed, double(count) + 1, 2.0 * count));
+        }
+      } else {
+        next = uint32_t(std::min<uint64_t>(2ull * count, max_spp_));
+      }
+      next = std::min(next, max_spp_);
+    }
+    target[i] = next;
+    wanted += next - count;
+  }
+
+  if (time_budget_ > 0 && wanted > 0) {
+    // Fit the pass into the time left at the cost per sample measured so far: cap every pixel's
+    // increment at the largest k the time affords (found by bisection).
+    const double per_sample = seconds / double(std::max<uint64_t>(samples, 1));
+    const double remaining = time_budget_ - seconds;
+    const double affordable = remaining > 0 ? remaining / per_sample : 0;
+    expected_samples_ = samples + uint64_t(std::min<double>(affordable, double(wanted)));
+    if (double(wanted) > affordable) {
+      auto increments_capped_at = [&](uint64_t k) {
+        uint64_t total = 0;
+        for (size_t i = 0; i < pixels_; ++i) {
+          const int x = int(i % size_t(width)), y = int(i / size_t(width));
+          total += std::min<uint64_t>(target[i] - std::min<uint64_t>(film.sample_count(x, y), target[i]), k);
+        }
+        return total;
+      };
+      uint64_t lo = 0, hi = max_spp_;
+      while (lo < hi) {
+        const uint64_t mid = (lo + hi + 1) / 2;
+        if (double(increments_capped_at(mid)) <= affordable) lo = mid;
+        else hi = mid - 1;
+      }
+      if (lo == 0) return false;
+      wanted = 0;
+      for (size_t i = 0; i < pixels_; ++i) {
+        const int x = int(i % size_t(width)), y = int(i / size_t(width));
+        const uint32_t count = uint32_t(std::min<uint64_t>(film.sample_count(x, y), target[i]));
+        target[i] = count + uint32_t(std::min<uint64_t>(target[i] - count, lo));
+        wanted += target[i] - count;
+      }
+    }
+  } else if (adaptive()) {
+    expected_samples_ = samples + wanted;
+  }
+  return wanted > 0;
+}
+
+}  // namespace prism

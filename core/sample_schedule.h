@@ -1,0 +1,46 @@
+// SampleSchedule: how many samples each pixel gets in each progressive pass, from the budgets
+// (fixed spp, wall-clock time, noise target) and the film's own noise estimates.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/film.h"
+#include "core/render_settings.h"
+
+namespace prism {
+
+class SampleSchedule {
+ public:
+  SampleSchedule(const RenderSettings& settings, int width, int height);
+
+  // Fills `target` with each pixel's sample count at the end of the next pass (a pixel's samples
+  // run from its current count up to its target). Returns false when the render is complete.
+  // `seconds` and `samples` are the rendering time and samples taken so far.
+  bool next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target);
+
+  bool adaptive() const { return noise_target_ > 0; }
+  bool progressive() const { return time_budget_ > 0 || noise_target_ > 0; }
+  int passes() const { return passes_; }
+  // Samples a whole render is expected to take, for progress reports (an estimate under budgets).
+  uint64_t expected_samples() const { return expected_samples_; }
+
+  // Estimated relative standard error of a pixel's luminance: the standard error (the channels'
+  // errors added, a bound reached when they are fully correlated, as they nearly are) over the
+  // larger of the pixel's luminance and a floor of 1% of the image's mean luminance.
+  double relative_error(const Film& film, int x, int y) const;
+  // Measures that floor from the film (done before each adaptive pass).
+  void update_floor(const Film& film);
+
+ private:
+  uint32_t max_spp_;
+  uint32_t min_spp_;
+  double time_budget_, noise_target_;
+  size_t pixels_;
+  int passes_ = 0;
+  double floor_ = 1e-30;
+  uint64_t expected_samples_;
+  std::vector<uint8_t> converged_;
+};
+
+}  // namespace prism

@@ -1,0 +1,19 @@
+#include "core/sampler_factory.h"
+
+#include <stdexcept>
+
+#include "core/sobol_sampler.h"
+
+namespace prism {
+
+std::vector<std::string> sampler_names() { return {"sobol", "independent"}; }
+
+std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed) {
+  if (name == "sobol") return std::make_unique<SobolSampler>(seed);
+  if (name == "independent") return std::make_unique<IndependentSampler>(seed);
+  std::string names;
+  for (const auto& n : sampler_names()) names += (names.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown sampler '" + name + "' (known: " + names + ")");
+}
+
+}  // namespace prism

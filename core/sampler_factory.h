@@ -1,0 +1,18 @@
+// Sampler factory: the samplers by the names the command line and job files use.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/sampler.h"
+
+namespace prism {
+
+std::vector<std::string> sampler_names();  // the default first
+
+// Throws std::invalid_argument naming the known samplers for an unknown name.
+std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed);
+
+}  // namespace prism

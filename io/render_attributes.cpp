@@ -1,0 +1,42 @@
+#include "io/render_attributes.h"
+
+#include <string>
+
+namespace prism {
+
+std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const RenderStats& stats) {
+  const bool timed = s.time_budget > 0, adaptive = s.noise_target > 0;
+  const std::string budget = timed && adaptive ? "time+noise" : timed ? "time" : adaptive ? "noise" : "spp";
+  std::vector<ExrAttribute> a = {
+      {"prism/integrator", s.integrator},
+      {"prism/sampler", s.sampler},
+      {"prism/seed", std::to_string(s.seed)},
+      {"prism/maxDepth", s.max_depth},
+      {"prism/maxDiffuseDepth", s.max_diffuse_depth},
+      {"prism/rrStartDepth", s.rr_start_depth},
+      {"prism/clampIndirect", double(s.clamp_indirect)},
+      {"prism/budget", budget},
+      {"prism/spp", int(stats.spp_max)},
+      {"prism/sppMin", int(stats.spp_min)},
+      {"prism/sppMax", int(stats.spp_max)},
+      {"prism/sppMean", stats.spp_mean},
+      {"prism/relativeError", stats.relative_error},
+      {"prism/nonFiniteSamples", double(stats.nonfinite_samples)},
+  };
+  if (timed || adaptive) {
+    a.push_back({"prism/sppLimit", s.spp});
+    a.push_back({"prism/passes", stats.passes});
+  }
+  if (timed) {
+    a.push_back({"prism/timeBudget", s.time_budget});
+    a.push_back({"prism/renderSeconds", stats.seconds});
+  }
+  if (adaptive) {
+    a.push_back({"prism/noiseTarget", s.noise_target});
+    a.push_back({"prism/minSpp", s.min_spp});
+    a.push_back({"prism/convergedFraction", stats.converged_fraction});
+  }
+  return a;
+}
+
+}  // namespace prism

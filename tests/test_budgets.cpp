@@ -1,0 +1,121 @@
+// Budgets: a wall-clock budget and a noise target give valid images, reproducible where they
+// should be, and the noise target is met where the true value is known (the furnace).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/camera.h"
+#include "core/renderer.h"
+#include "core/sampler_factory.h"
+#include "core/scene.h"
+#include "furnace_scene.h"
+#include "integrators/path_integrator.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+constexpr int kDepth = 4;
+
+struct FurnaceRender {
+  RenderStats stats;
+  Film film;
+};
+
+FurnaceRender render_furnace(const RenderSettings& settings) {
+  const Scene scene(test::furnace_box(1.0, 0.5));
+  FurnaceRender out{{}, Film(settings.width, settings.height)};
+  const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+  out.stats = render(scene, Camera(test::furnace_camera(), settings.width, settings.height), integrator, settings,
+                     out.film);
+  return out;
+}
+
+RenderSettings furnace_settings() {
+  RenderSettings s;
+  s.width = s.height = 24;
+  s.max_depth = kDepth;
+  s.rr_start_depth = 1 << 20;
+  s.seed = 21;
+  return s;
+}
+
+TEST(Budgets, TimeBudgetGivesACompleteImageEqualToAFixedSppRender) {
+  RenderSettings s = furnace_settings();
+  s.time_budget = 0.3;
+  s.spp = 1 << 30;
+  const FurnaceRender timed = render_furnace(s);
+  EXPECT_GE(timed.stats.passes, 1);
+  EXPECT_GE(timed.stats.spp_min, 1u);
+  EXPECT_EQ(timed.stats.spp_min, timed.stats.spp_max) << "every pixel gets the same samples under a time budget";
+  EXPECT_EQ(timed.stats.nonfinite_samples, 0u);
+
+  // Samples are summed in index order, so the progressive image is the fixed-spp image, bit for bit.
+  RenderSettings fixed = furnace_settings();
+  fixed.spp = int(timed.stats.spp_min);
+  fixed.threads = 1;
+  const FurnaceRender reference = render_furnace(fixed);
+  EXPECT_EQ(timed.film.resolve_rgba(), reference.film.resolve_rgba());
+}
+
+TEST(Budgets, TimeBudgetStopsAtTheSppCeiling) {
+  RenderSettings s = furnace_settings();
+  s.time_budget = 60;
+  s.spp = 5;
+  const FurnaceRender r = render_furnace(s);
+  EXPECT_EQ(r.stats.spp_max, 5u);
+  EXPECT_EQ(r.stats.spp_min, 5u);
+  EXPECT_LT(r.stats.seconds, 30.0) << "a render that reached its ceiling must not wait for the clock";
+}
+
+// Under a noise target every pixel stops once its estimated relative standard error is below the
+// target. The furnace's true radiance is known, so the real error can be checked: its RMS over
+// pixels must be near the target. Pixels stop on a noisy estimate of their own error (from at
+// least min_spp samples, a relative uncertainty of about 1 / sqrt(2 (min_spp - 1)) = 18% at 16), so
+// the real error may exceed the target by that much, not more. (With Sobol the sample variance
+// overestimates the error of a stratified mean, so the real error lands lower.)
+TEST(Budgets, NoiseTargetIsMetOnTheFurnace) {
+  for (const std::string& sampler : sampler_names())
+  for (double target : {0.02, 0.01, 0.005}) {
+    RenderSettings s = furnace_settings();
+    s.sampler = sampler;
+    s.noise_target = target;
+    s.spp = 1 << 16;
+    const FurnaceRender r = render_furnace(s);
+    const double truth = test::furnace_radiance(1.0, 0.5, kDepth);
+    double sq = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        float rgba[4];
+        r.film.mean(x, y, rgba);
+        ASSERT_TRUE(std::isfinite(rgba[1]));
+        const double e = (rgba[1] - truth) / truth;
+        sq += e * e;
+      }
+    const double rms = std::sqrt(sq / (s.width * s.height));
+    std::printf("%s, target %.3f: real relative error %.4f, estimated %.4f, spp %llu-%llu (mean %.1f), %d passes\n", sampler.c_str(), target,
+                rms, r.stats.relative_error, (unsigned long long)r.stats.spp_min, (unsigned long long)r.stats.spp_max,
+                r.stats.spp_mean, r.stats.passes);
+    const double estimate_uncertainty = 1.0 / std::sqrt(2.0 * (s.min_spp - 1));
+    EXPECT_LT(rms, target * (1 + estimate_uncertainty)) << sampler;
+    EXPECT_GT(rms, target * 0.3) << sampler << ": far below the target, samples were wasted";
+    EXPECT_EQ(r.stats.converged_fraction, 1.0);
+    EXPECT_GE(r.stats.spp_min, uint64_t(s.min_spp));
+  }
+}
+
+TEST(Budgets, AdaptiveRenderDoesNotDependOnThreads) {
+  RenderSettings s = furnace_settings();
+  s.noise_target = 0.05;
+  s.spp = 4096;
+  s.threads = 1;
+  const FurnaceRender one = render_furnace(s);
+  s.threads = 2;
+  s.tile_size = 7;
+  const FurnaceRender two = render_furnace(s);
+  EXPECT_EQ(one.film.resolve_rgba(), two.film.resolve_rgba());
+  EXPECT_EQ(one.film.resolve_counts(), two.film.resolve_counts());
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,205 @@
+// Samplers: Sobol's construction and stratification, determinism, uniformity, independence between
+// pixels, and the convergence rate each sampler gives on the furnace.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <set>
+
+#include "core/camera.h"
+#include "core/owen_sobol.h"
+#include "core/pcg32.h"
+#include "core/renderer.h"
+#include "core/sampler_factory.h"
+#include "core/scene.h"
+#include "core/sobol_sampler.h"
+#include "furnace_scene.h"
+#include "integrators/path_integrator.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+TEST(Sobol, TablesMatchTheDirectionNumbers) {
+  Pcg32 rng(5, 6);
+  for (int i = 0; i < 10000; ++i) {
+    const uint32_t index = i < 64 ? uint32_t(i) : rng.next_u32();
+    ASSERT_EQ(reverse_bits(sobol_dim1_reversed(reverse_bits(index))), sobol_dim1(index)) << index;
+  }
+  // The first points of dimension 1: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8 (Joe and Kuo's tables).
+  const double expected[8] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
+  for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dim1(i) * 0x1p-32, expected[i]) << i;
+}
+
+TEST(Sobol, OwenScrambleKeepsDyadicIntervals) {
+  // Values sharing their top k bits still share them after scrambling, and it is a bijection.
+  Pcg32 rng(1, 9);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const uint32_t seed = rng.next_u32(), a = rng.next_u32();
+    const int k = int(rng.next_u32() % 32);
+    const uint32_t mask = k ? ~0u << (32 - k) : 0u;
+    const uint32_t b = (a & mask) | (rng.next_u32() & ~mask);
+    ASSERT_EQ(owen_scramble(a, seed) & mask, owen_scramble(b, seed) & mask);
+  }
+  std::set<uint32_t> seen;
+  for (uint32_t v = 0; v < 4096; ++v) seen.insert(owen_scramble(v << 20, 0xdeadbeef) >> 20);
+  EXPECT_EQ(seen.size(), 4096u);
+}
+
+// The first 2^m samples of a pixel put exactly one point in every dyadic box of area 2^-m in every
+// 2D draw (a (0,m,2)-net: every shape 2^-a x 2^-(m-a)), and one in every 1/2^m interval in 1D draws.
+TEST(Sobol, EveryDrawOfAPixelIsStratified) {
+  SobolSampler sampler(42);
+  for (int m : {2, 4, 6, 8}) {
+    const uint32_t n = 1u << m;
+    for (int pixel = 0; pixel < 6; ++pixel) {
+      const int x = pixel * 37, y = 1000 - pixel * 11;
+      const int draws = 12;  // alternating 2D and 1D draws, as a path makes them
+      std::vector<std::vector<Vec2>> points(draws, std::vector<Vec2>(n));
+      for (uint32_t s = 0; s < n; ++s) {
+        sampler.start_pixel_sample(x, y, s);
+        for (int d = 0; d < draws; ++d) points[d][s] = d % 2 == 0 ? sampler.next_2d() : Vec2(sampler.next_1d(), 0.5f);
+      }
+      for (int d = 0; d < draws; ++d) {
+        const bool two_d = d % 2 == 0;
+        for (int a = 0; a <= (two_d ? m : 0); ++a) {
+          const int cols = two_d ? 1 << a : int(n), rows = two_d ? 1 << (m - a) : 1;
+          std::vector<int> boxes(n, 0);
+          for (const Vec2& p : points[d]) {
+            ASSERT_GE(p.x, 0.0f);
+            ASSERT_LT(p.x, 1.0f);
+            ++boxes[size_t(int(p.y * float(rows)) * cols + int(p.x * float(cols)))];
+          }
+          for (int count : boxes)
+            ASSERT_EQ(count, 1) << "m " << m << ", pixel " << pixel << ", draw " << d << ", boxes " << cols << "x" << rows;
+        }
+      }
+    }
+  }
+}
+
+// A sample's values depend only on (pixel, sample index, dimension, seed), never on what the
+// sampler was asked before: any order of pixels and samples gives the same numbers.
+TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
+  for (const std::string& name : sampler_names()) {
+    auto a = make_sampler(name, 9), b = make_sampler(name, 9), other_seed = make_sampler(name, 10);
+    a->start_pixel_sample(3, 4, 17);
+    std::vector<float> direct;
+    for (int d = 0; d < 40; ++d) direct.push_back(d % 3 == 0 ? a->next_2d().y : a->next_1d());
+    for (int s = 0; s < 30; ++s) {  // disturb b's state: other pixels, other samples, partial paths
+      b->start_pixel_sample(s % 5, 4, uint64_t(s));
+      for (int d = 0; d < s; ++d) b->next_1d();
+    }
+    b->start_pixel_sample(3, 4, 17);
+    other_seed->start_pixel_sample(3, 4, 17);
+    int same_as_other_seed = 0;
+    for (int d = 0; d < 40; ++d) {
+      const float v = d % 3 == 0 ? b->next_2d().y : b->next_1d();
+      EXPECT_EQ(v, direct[size_t(d)]) << name << " dimension " << d;
+      same_as_other_seed += (d % 3 == 0 ? other_seed->next_2d().y : other_seed->next_1d()) == direct[size_t(d)];
+    }
+    EXPECT_LT(same_as_other_seed, 3) << name << ": another seed must give other numbers";
+  }
+}
+
+// Pooled over pixels, every dimension is uniform, and a 1D draw is independent of the next one
+// (chi-square over a 16 x 16 grid; a correct sampler's statistic has mean 255 and deviation 22.6;
+// stratification can only lower it).
+TEST(Samplers, DimensionsAreUniformAndIndependentAcrossPixels) {
+  for (const std::string& name : sampler_names()) {
+    auto sampler = make_sampler(name, 3);
+    constexpr int kBins = 16, kDraws = 10;
+    std::vector<std::vector<double>> hist(kDraws, std::vector<double>(kBins * kBins, 0.0));
+    double n = 0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x)
+        for (int s = 0; s < 8; ++s, ++n) {
+          sampler->start_pixel_sample(x, y, uint64_t(s));
+          for (int d = 0; d < kDraws; ++d) {
+            const Vec2 p = d % 2 == 0 ? sampler->next_2d() : Vec2(sampler->next_1d(), sampler->next_1d());
+            hist[size_t(d)][size_t(int(p.y * kBins) * kBins + int(p.x * kBins))] += 1;
+          }
+        }
+    const double expected = n / (kBins * kBins), dof = kBins * kBins - 1;
+    for (int d = 0; d < kDraws; ++d) {
+      double chi2 = 0;
+      for (double h : hist[size_t(d)]) chi2 += (h - expected) * (h - expected) / expected;
+      EXPECT_LT(chi2, dof + test::kSigmas * std::sqrt(2 * dof)) << name << " draw " << d;
+    }
+  }
+}
+
+// Renders the furnace; returns each pixel's error against the exact radiance (green channel).
+std::vector<double> furnace_errors(const std::string& sampler, int spp, int size, uint64_t seed) {
+  const int depth = 4;
+  const Scene scene(test::furnace_box(1.0, 0.5));
+  RenderSettings settings;
+  settings.width = settings.height = size;
+  settings.spp = spp;
+  settings.max_depth = depth;
+  settings.rr_start_depth = 1 << 20;
+  settings.seed = seed;
+  settings.sampler = sampler;
+  Film film(size, size);
+  const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+  render(scene, Camera(test::furnace_camera(), size, size), integrator, settings, film);
+  const double truth = test::furnace_radiance(1.0, 0.5, depth);
+  std::vector<double> errors;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      float rgba[4];
+      film.mean(x, y, rgba);
+      errors.push_back(rgba[1] - truth);
+    }
+  return errors;
+}
+
+// A flat field shows no structure: the errors of neighbouring pixels are uncorrelated (the sample
+// correlation of n independent pairs has standard deviation 1/sqrt(n)).
+TEST(Samplers, NoCorrelationBetweenPixelsInAFlatField) {
+  const int size = 64;
+  for (const std::string& name : sampler_names()) {
+    const std::vector<double> e = furnace_errors(name, 4, size, 5);
+    for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{2, 0}, std::pair{0, 4}}) {
+      double sab = 0, saa = 0, sbb = 0, sa = 0, sb = 0, n = 0;
+      for (int y = 0; y + dy < size; ++y)
+        for (int x = 0; x + dx < size; ++x, ++n) {
+          const double a = e[size_t(y * size + x)], b = e[size_t((y + dy) * size + x + dx)];
+          sa += a, sb += b, sab += a * b, saa += a * a, sbb += b * b;
+        }
+      const double cov = sab / n - sa / n * sb / n;
+      const double rho = cov / std::sqrt((saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n));
+      EXPECT_LT(std::abs(rho), test::kSigmas / std::sqrt(n)) << name << " lag " << dx << "," << dy;
+    }
+  }
+}
+
+// Root mean square error over pixels, and its standard error (from the spread of squared errors).
+std::pair<double, double> rmse_with_error(const std::vector<double>& errors) {
+  test::RunningStats sq;
+  for (double e : errors) sq.add(e * e);
+  const double rmse = std::sqrt(sq.mean());
+  return {rmse, 0.5 * rmse * sq.standard_error() / sq.mean()};  // d sqrt(m) = dm / (2 sqrt(m))
+}
+
+// Monte Carlo error falls as 1/sqrt(N): four times the samples halve the RMSE. Sobol must do at
+// least as well (its low dimensions converge faster). The ratio's tolerance comes from the
+// measured spread of the squared errors (the two renders share samples, which only tightens it).
+TEST(Samplers, FourTimesTheSamplesHalveTheFurnaceError) {
+  const int size = 40;
+  for (const std::string& name : sampler_names()) {
+    for (int n : {4, 16}) {
+      const auto [r1, s1] = rmse_with_error(furnace_errors(name, n, size, 77));
+      const auto [r4, s4] = rmse_with_error(furnace_errors(name, 4 * n, size, 77));
+      const double ratio = r4 / r1;
+      const double sigma = ratio * std::hypot(s1 / r1, s4 / r4);
+      if (name == "independent") EXPECT_NEAR(ratio, 0.5, test::kSigmas * sigma) << name << " at " << n << " spp";
+      else EXPECT_LT(ratio, 0.5 + test::kSigmas * sigma) << name << " at " << n << " spp";
+      std::printf("%s: RMSE %.5f at %d spp, %.5f at %d spp, ratio %.3f +- %.3f\n", name.c_str(), r1, n, r4, 4 * n, ratio,
+                  sigma);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace prism

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/compare_command.h"
+#include "apps/converge_command.h"
 #include "apps/exit_codes.h"
 #include "apps/render_command.h"
 
@@ -74,6 +75,8 @@ int main(int argc, char** argv) {
 
   CompareOptions compare;
   CLI::App* compare_cmd = add_compare_command(app, compare);
+  ConvergeOptions converge;
+  CLI::App* converge_cmd = add_converge_command(app, converge);
 
   try {
     app.parse(argc, argv);
@@ -83,5 +86,6 @@ int main(int argc, char** argv) {
   }
   if (cmd->parsed()) return run_render(render);
   if (compare_cmd->parsed()) return run_compare(compare);
+  if (converge_cmd->parsed()) return run_converge(converge);
   return kExitUsage;
 }

@@ -84,5 +84,29 @@ TEST(Furnace, SphereInteriorMatchesAnalyticRadiance) {
   expect_furnace(furnace_sphere(2.0, 0.7), Vec3(0.4f, 0.1f, -0.3f), 2.0, 0.7, 8, 1);
 }
 
+// Clamping indirect light removes light after two or more scattering events: with a vanishing
+// clamp the furnace keeps exactly its direct part, Le (1 + a); with a huge one nothing changes.
+TEST(Furnace, ClampIndirectKeepsOnlyWhatItShould) {
+  const Scene scene(furnace_box(1.0, 0.5));
+  const int depth = 4;
+  for (const auto& [clamp, expected] : {std::pair{1e-20f, 1.5}, std::pair{1e30f, furnace_radiance(1.0, 0.5, depth)}}) {
+    RenderSettings settings;
+    settings.width = settings.height = 16;
+    settings.spp = 16;
+    settings.max_depth = depth;
+    const PathIntegrator integrator(depth, kNoRoulette, -1, clamp);
+    Film film(16, 16);
+    render(scene, Camera(test::furnace_camera(), 16, 16), integrator, settings, film);
+    test::RunningStats pixels;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        float rgba[4];
+        film.mean(x, y, rgba);
+        pixels.add(rgba[0]);
+      }
+    EXPECT_NEAR(pixels.mean(), expected, test::kSigmas * pixels.standard_error() + 1e-5) << "clamp " << clamp;
+  }
+}
+
 }  // namespace
 }  // namespace prism

@@ -1,0 +1,192 @@
+#include "apps/converge_command.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "apps/command_errors.h"
+#include "apps/render_setup.h"
+#include "core/hash.h"
+#include "core/image_metrics.h"
+#include "core/renderer.h"
+#include "integrators/integrator_factory.h"
+#include "io/atomic_file.h"
+#include "io/exr_writer.h"
+#include "io/image_decode.h"
+#include "io/loglog_plot.h"
+#include "io/render_attributes.h"
+
+namespace prism {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::vector<int> spp_series(const std::string& text) {
+  std::vector<int> out;
+  for (const std::string& item : split_list(text)) {
+    char* end = nullptr;
+    const long v = std::strtol(item.c_str(), &end, 10);
+    if (*end != '\0' || v < 1 || v > (1 << 30)) throw UsageError("--spp: expected a list of counts such as 1,4,16,64, got '" + text + "'");
+    out.push_back(int(v));
+  }
+  if (out.empty()) throw UsageError("--spp: the list is empty");
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+FloatImage film_image(const Film& film) { return {film.width(), film.height(), 4, film.resolve_rgba()}; }
+
+struct Row {
+  std::string setting;
+  int spp;
+  double seconds;
+  ImageComparison error;
+};
+
+int converge(const ConvergeOptions& o) {
+  const std::vector<int> spps = spp_series(o.spp);
+  const std::vector<std::string> samplers = split_list(o.samplers), integrators = split_list(o.integrators);
+  if (samplers.empty() || integrators.empty()) throw UsageError("--samplers and --integrators need at least one name");
+  if (!std::filesystem::is_directory(o.output_dir))
+    throw OutputError(o.output_dir, "the output folder does not exist");
+  const std::filesystem::path dir(o.output_dir);
+  const std::string csv_path = (dir / "convergence.csv").string(), svg_path = (dir / "convergence.svg").string();
+  check_output_path(csv_path);
+  check_output_path(svg_path);
+
+  // A given reference fixes the resolution unless --res says otherwise (then sizes must agree).
+  RenderOptions ro = o.render;
+  std::optional<FloatImage> reference;
+  if (o.reference) {
+    ImageDesc img = read_image_file(*o.reference, ColorSpace::Linear);
+    reference = FloatImage{img.width, img.height, img.channels, std::move(img.texels)};
+    if (!ro.resolution) ro.resolution = fmt::format("{}x{}", img.width, img.height);
+  }
+  PreparedRender p = prepare_render(ro);
+  build_scene(p, ro.quiet);
+  const Camera camera(p.camera, p.settings.width, p.settings.height);
+  if (reference && (reference->width != p.settings.width || reference->height != p.settings.height))
+    throw UsageError(fmt::format("--reference {} is {}x{} but the render is {}x{}", *o.reference, reference->width,
+                                 reference->height, p.settings.width, p.settings.height));
+
+  if (!reference) {
+    // prism's own converged image, with another seed than the series so their errors are independent.
+    RenderSettings rs = p.settings;
+    rs.spp = o.reference_spp;
+    rs.seed = hash_values(p.settings.seed, 0x5eedull);
+    const std::string ref_path = (dir / "reference.exr").string();
+    if (!ro.quiet) fmt::print("rendering the reference: {} spp, {} sampler -> {}\n", rs.spp, rs.sampler, ref_path);
+    Film film(rs.width, rs.height);
+    const RenderStats stats = render(*p.scene, camera, *make_integrator(rs), rs, film);
+    std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
+    attributes.push_back({"prism/scene", p.scene_path});
+    write_exr(ref_path, rs.width, rs.height, film.resolve_rgba(), attributes);
+    reference = film_image(film);
+  }
+
+  std::vector<Row> rows;
+  LogLogPlot plot{fmt::format("{}: relative MSE against render time ({}x{})",
+                              std::filesystem::path(p.scene_path).filename().string(), p.settings.width,
+                              p.settings.height),
+                  "render time (s)", "relMSE", {}};
+  if (!ro.quiet) fmt::print("{:<20}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
+  for (const std::string& integrator_name : integrators)
+    for (const std::string& sampler : samplers) {
+      RenderSettings s = p.settings;
+      s.integrator = integrator_name;
+      s.sampler = sampler;
+      std::unique_ptr<Integrator> integrator;
+      try {
+        integrator = make_integrator(s);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      {
+        // Warm up (thread pool, sampler validation) on one pixel so the first level's time is the render's.
+        RenderSettings warm = s;
+        warm.spp = 1;
+        Film pixel(1, 1);
+        try {
+          render(*p.scene, camera, *integrator, warm, pixel);
+        } catch (const std::invalid_argument& e) {
+          throw UsageError(e.what());
+        }
+      }
+      PlotSeries series{integrator_name + "/" + sampler, {}};
+      Film film(s.width, s.height);
+      double seconds = 0;
+      // Sample counts are prefixes of one sequence: each level continues the previous film.
+      for (int spp : spps) {
+        s.spp = spp;
+        seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+        Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
+        const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
+        if (!ro.quiet)
+          fmt::print("{:<20}{:>8}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
+                     row.error.all.rel_mse, efficiency);
+        series.points.emplace_back(seconds, row.error.all.rel_mse);
+        rows.push_back(row);
+      }
+      plot.series.push_back(std::move(series));
+    }
+
+  {
+    AtomicFile csv(csv_path);
+    std::ofstream f(csv.temp_path());
+    f << "setting,spp,seconds,rmse,relmse,efficiency\n";
+    for (const Row& r : rows)
+      f << fmt::format("{},{},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
+                       r.error.all.rel_mse, 1.0 / (r.error.all.rel_mse * r.seconds));
+    if (!f.flush()) throw OutputError(csv_path, "cannot write");
+    f.close();
+    csv.commit();
+  }
+  write_loglog_svg(svg_path, plot);
+  if (!ro.quiet) {
+    fmt::print("fitted slopes of log relMSE against log time (Monte Carlo: -1):");
+    for (const PlotSeries& s : plot.series) fmt::print(" {} {:.2f};", s.name, loglog_slope(s.points));
+    fmt::print("\n-> {}, {}\n", csv_path, svg_path);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "converge", "Measure error against render time for samplers and integrators: a CSV and a log-log plot (SVG)");
+  cmd->add_option("SCENE", o.render.scene, "Scene: a glTF file or a job file")->required();
+  cmd->add_option("--reference", o.reference,
+                  "Converged reference image (default: prism renders one at --reference-spp into the output folder)");
+  cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference prism renders (default 4096)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", o.spp, "Sample counts to measure at, a comma-separated list (default 1,2,4,...,256)");
+  cmd->add_option("--samplers", o.samplers, "Samplers to compare, comma-separated (default sobol,independent)");
+  cmd->add_option("--integrators", o.integrators, "Integrators to compare, comma-separated (default path)");
+  cmd->add_option("--res", o.render.resolution, "Image size WIDTHxHEIGHT (default: the reference's, else as render)");
+  cmd->add_option("--max-depth", o.render.settings.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--camera", o.render.settings.camera, "Camera by name or index (default: the first)");
+  cmd->add_option("--seed", o.render.settings.seed, "Random seed of the series (default 0)");
+  cmd->add_option("--threads", o.render.settings.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
+  cmd->add_option("-o,--output-dir", o.output_dir,
+                  "Folder for convergence.csv, convergence.svg and reference.exr (default: the current folder)");
+  cmd->add_flag("-q,--quiet", o.render.quiet, "Print nothing but errors");
+  return cmd;
+}
+
+int run_converge(const ConvergeOptions& options) {
+  return run_reporting_errors([&] { return converge(options); });
+}
+
+}  // namespace prism

@@ -1,0 +1,29 @@
+// The `prism converge` command: error against time for each sampler and integrator, as CSV and a plot.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "apps/render_command.h"
+
+namespace CLI {
+class App;
+}
+
+namespace prism {
+
+struct ConvergeOptions {
+  RenderOptions render;                  // scene, resolution, depth, seed, threads, camera
+  std::optional<std::string> reference;  // rendered by prism at reference_spp when absent
+  int reference_spp = 4096;
+  std::string spp = "1,2,4,8,16,32,64,128,256";
+  std::string samplers = "sobol,independent";
+  std::string integrators = "path";
+  std::string output_dir = ".";
+};
+
+CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& options);
+
+int run_converge(const ConvergeOptions& options);
+
+}  // namespace prism

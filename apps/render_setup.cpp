@@ -1,0 +1,118 @@
+#include "apps/render_setup.h"
+
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "apps/command_errors.h"
+#include "core/sampler_factory.h"
+#include "integrators/integrator_factory.h"
+#include "io/duration_text.h"
+#include "io/errors.h"
+#include "materials/material_eval.h"
+
+namespace prism {
+namespace {
+
+void parse_resolution(const std::string& text, int& width, int& height) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
+      w > 65536 || h > 65536)
+    throw UsageError("--res: expected WIDTHxHEIGHT with each between 1 and 65536, got '" + text + "'");
+  width = w;
+  height = h;
+}
+
+// Defaults, then the job file, then the command line.
+RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobFile>& job) {
+  RenderSettings s;
+  if (job) job->settings.apply_to(s);
+  RenderSettingsOverride cli = o.settings;
+  if (o.resolution) {
+    int w = 0, h = 0;
+    parse_resolution(*o.resolution, w, h);
+    cli.width = w;
+    cli.height = h;
+  }
+  if (o.time) {
+    const std::optional<double> seconds = parse_duration(*o.time);
+    if (!seconds || !(*seconds > 0)) throw UsageError("--time: expected a duration such as 30s, 2m or 1h30m, got '" + *o.time + "'");
+    cli.time_budget = *seconds;
+  }
+  cli.apply_to(s);
+  // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
+  const bool spp_given = o.settings.spp || (job && job->settings.spp);
+  if (!spp_given && s.time_budget > 0) s.spp = s.noise_target > 0 ? 4096 : (1 << 30);
+  else if (!spp_given && s.noise_target > 0) s.spp = 4096;
+  if (s.spp < 1) throw UsageError("--spp must be at least 1");
+  if (s.max_depth < 0) throw UsageError("--max-depth must be at least 0");
+  if (s.threads < 0) throw UsageError("--threads must be at least 0 (0 = all cores)");
+  return s;
+}
+
+// --env takes a map's path, or one or three numbers for a constant sky.
+EnvironmentSpec environment_option(const RenderOptions& o) {
+  EnvironmentSpec spec;
+  if (o.env) {
+    float r, g, b;
+    char extra;
+    if (std::sscanf(o.env->c_str(), "%f,%f,%f%c", &r, &g, &b, &extra) == 3) spec.color = Rgb(r, g, b);
+    else if (std::sscanf(o.env->c_str(), "%f%c", &r, &extra) == 1) spec.color = Rgb(r);
+    else spec.map = *o.env;
+    if (spec.color && !(min(*spec.color, Rgb(0.0f)) == Rgb(0.0f) && is_finite(*spec.color)))
+      throw UsageError("--env: a constant sky needs finite non-negative numbers, got '" + *o.env + "'");
+  }
+  if (o.env_intensity) spec.intensity = *o.env_intensity;
+  if (o.env_rotation) spec.rotation_degrees = *o.env_rotation;
+  return spec;
+}
+
+}  // namespace
+
+std::string si(double v) {
+  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
+  if (v >= 1e6) return fmt::format("{:.1f}M", v / 1e6);
+  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
+  return fmt::format("{:.0f}", v);
+}
+
+PreparedRender prepare_render(const RenderOptions& o) {
+  Diagnostics diag;
+  LoadedScene loaded = load_scene_source(o.scene, diag, environment_option(o));
+  if (!o.quiet)
+    for (const auto& w : diag.lines()) fmt::print(stderr, "prism: warning: {}\n", w);
+
+  PreparedRender p;
+  p.scene_path = o.scene;
+  p.settings = resolve_settings(o, loaded.job);
+  p.job = std::move(loaded.job);
+  try {
+    p.camera = select_camera(loaded.scene, p.settings.camera);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.scene, "camera", e.what());
+  }
+  if (p.settings.width == 0 || p.settings.height == 0) default_resolution(p.camera, p.settings.width, p.settings.height);
+  try {
+    make_sampler(p.settings.sampler, 0);
+    make_integrator(p.settings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  p.desc = std::move(loaded.scene);
+  return p;
+}
+
+void build_scene(PreparedRender& p, bool quiet) {
+  try {
+    p.scene = std::make_unique<Scene>(std::move(p.desc), &material_alpha);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(p.scene_path, "", e.what());
+  }
+  if (p.scene->emitters().empty() && !quiet)
+    fmt::print(stderr, "prism: warning: the scene has no lights (emitting surfaces or punctual lights), so its colour "
+                       "channels render black (give one with --env; alpha still shows coverage)\n");
+}
+
+}  // namespace prism

@@ -1,0 +1,37 @@
+// Preparing a render: the scene source loaded, settings resolved (defaults, job file, command
+// line), the camera chosen, and the Embree scene built; shared by render, converge and bench.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/render_command.h"
+#include "core/camera.h"
+#include "core/render_settings.h"
+#include "core/scene.h"
+#include "io/job_file.h"
+#include "io/scene_source.h"
+
+namespace prism {
+
+struct PreparedRender {
+  std::string scene_path;
+  std::optional<JobFile> job;
+  RenderSettings settings;
+  CameraDesc camera;
+  SceneDesc desc;                // moved into `scene` by build_scene
+  std::unique_ptr<Scene> scene;  // null until build_scene
+};
+
+// Loads the scene source and resolves settings and camera; prints the loader's warnings unless
+// quiet. Throws UsageError for bad options and InputError for bad files.
+PreparedRender prepare_render(const RenderOptions& options);
+
+// Builds the Embree scene (and warns, unless quiet, when nothing emits light).
+void build_scene(PreparedRender& render, bool quiet);
+
+// 12.3k, 4.5M, 1.20G: counts for summaries.
+std::string si(double v);
+
+}  // namespace prism

@@ -1,6 +1,7 @@
 // prism command line: parses arguments and dispatches to the commands.
 #include <CLI/CLI.hpp>
 
+#include "apps/bench_command.h"
 #include "apps/compare_command.h"
 #include "apps/converge_command.h"
 #include "apps/exit_codes.h"
@@ -77,6 +78,8 @@ int main(int argc, char** argv) {
   CLI::App* compare_cmd = add_compare_command(app, compare);
   ConvergeOptions converge;
   CLI::App* converge_cmd = add_converge_command(app, converge);
+  BenchOptions bench;
+  CLI::App* bench_cmd = add_bench_command(app, bench);
 
   try {
     app.parse(argc, argv);
@@ -87,5 +90,6 @@ int main(int argc, char** argv) {
   if (cmd->parsed()) return run_render(render);
   if (compare_cmd->parsed()) return run_compare(compare);
   if (converge_cmd->parsed()) return run_converge(converge);
+  if (bench_cmd->parsed()) return run_bench(bench);
   return kExitUsage;
 }

@@ -239,6 +239,13 @@ RTCRayHit to_embree(const Ray& ray) {
 
 }  // namespace
 
+uint64_t Scene::triangle_count() const {
+  uint64_t n = 0;
+  for (const InstanceDesc& inst : desc_.instances)
+    for (const PrimitiveDesc& prim : desc_.meshes[size_t(inst.mesh)].primitives) n += prim.indices.size() / 3;
+  return n;
+}
+
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -43,6 +43,8 @@ class Scene {
   const Emitters& emitters() const { return emitters_; }
   const SceneFeatures& features() const { return features_; }
   double build_seconds() const { return build_seconds_; }
+  // Triangles in the world, counting each instance of a mesh.
+  uint64_t triangle_count() const;
 
  private:
   // What a top-level geometry id stands for.

@@ -132,3 +132,13 @@ if(NOT last_err MATCHES "is 16x16 but the render is 8x8")
   message(FATAL_ERROR "unclear reference size message: ${last_err}")
 endif()
 run(2 "${PRISM}" converge "${box}" --spp 1,x -o "${WORK_DIR}/converge")
+
+# bench: one line of figures per scene; a scene that fails is reported and fails the run.
+run(0 "${PRISM}" bench "${box}" --res 16x16 --spp 1)
+if(NOT last_out MATCHES "cornell-box.gltf +32 " OR NOT last_out MATCHES "peak MB")
+  message(FATAL_ERROR "bench line: ${last_out}")
+endif()
+run(3 "${PRISM}" bench "${box}" "${WORK_DIR}/absent.gltf" --res 16x16 --spp 1)
+if(NOT last_out MATCHES "absent.gltf +failed" OR NOT last_err MATCHES "absent.gltf")
+  message(FATAL_ERROR "bench failure report: ${last_out} ${last_err}")
+endif()

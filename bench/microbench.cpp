@@ -7,6 +7,7 @@
 #include "core/sobol_sampler.h"
 #include "core/sampling.h"
 #include "core/scene.h"
+#include "bench/ray_workload.h"
 #include "core/spawn.h"
 #include "io/gltf_loader.h"
 #include "materials/bsdf.h"
@@ -122,6 +123,47 @@ void BM_OccludedRandomRays(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
 BENCHMARK(BM_OccludedRandomRays)->ThreadRange(1, 2)->UseRealTime();
+
+// Raw Embree against prism's own queries, per kind of ray, on the canonical scenes: the raw
+// figures are the ceiling for prism's Mrays/s (prism adds instancing, hit reconstruction, alpha
+// and sphere callbacks). Items are rays; run with 1 and 2 threads.
+enum class RayKind { Camera, Bounce, Shadow };
+
+void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, bool raw) {
+  const bench::BenchScene& b = bench::bench_scene(scene_path);
+  if (!b.skip_reason.empty()) {
+    state.SkipWithError(b.skip_reason.c_str());
+    return;
+  }
+  const std::vector<Ray>& rays = kind == RayKind::Camera ? b.rays.camera : kind == RayKind::Bounce ? b.rays.bounce : b.rays.shadow;
+  if (rays.empty()) {
+    state.SkipWithError("no rays of this kind in the scene");
+    return;
+  }
+  // Threads start at different offsets and walk the same list.
+  size_t i = size_t(state.thread_index()) * rays.size() / 2;
+  SurfaceHit hit;
+  for (auto _ : state) {
+    const Ray& ray = rays[i];
+    if (++i == rays.size()) i = 0;
+    if (kind == RayKind::Shadow) benchmark::DoNotOptimize(raw ? bench::raw_occluded(b.raw, ray) : b.scene->occluded(ray));
+    else
+      benchmark::DoNotOptimize(raw ? bench::raw_intersect(b.raw, ray, kind == RayKind::Camera)
+                                   : b.scene->intersect(ray, hit, kind == RayKind::Camera));
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+
+#define PRISM_RAY_BENCHMARKS(name, path)                                                                      \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_camera_raw, path, RayKind::Camera, true)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_camera_prism, path, RayKind::Camera, false)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_bounce_raw, path, RayKind::Bounce, true)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_bounce_prism, path, RayKind::Bounce, false)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_shadow_raw, path, RayKind::Shadow, true)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_benchmark, name##_shadow_prism, path, RayKind::Shadow, false)->ThreadRange(1, 2)->UseRealTime();
+
+PRISM_RAY_BENCHMARKS(cornell_box, PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf")
+PRISM_RAY_BENCHMARKS(heavy_mesh, PRISM_SOURCE_DIR "/scenes/heavy-mesh/heavy-mesh.glb")
 
 }  // namespace
 }  // namespace prism

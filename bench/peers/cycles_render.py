@@ -1,0 +1,178 @@
+"""Render a glTF scene with Blender Cycles (CPU), settings matched to a prism render.
+
+Run inside Blender, headless:
+
+    blender -b --factory-startup --python-exit-code 1 --python cycles_render.py -- \
+        --gltf SCENE.gltf --out OUT.exr --res 512x512 --spp 64 --max-depth 8 [--seed 0]
+
+What it does, in order:
+  1. empties the factory start-up scene (its cube, lamp and camera would otherwise be rendered)
+     and gives the world a black background (the default grey world lights the open box);
+  2. imports the glTF with Blender's own importer (Debian 12 needs the numpy.bool shim below);
+  3. honours glTF's KHR_materials_ior = 1 (no specular layer) by setting the Principled
+     "Specular" input to 0 — the importer sets the IOR socket, which Principled ignores for
+     opaque dielectrics — or, with --bsdf diffuse, swaps Principled for a Lambert Diffuse BSDF;
+  4. sets Cycles to unbiased, comparable settings: fixed sample count, no adaptive sampling,
+     no denoising, no clamping, no glossy blur, no light threshold, 1-pixel box filter,
+     bounces matched to prism's --max-depth (see BOUNCES below);
+  5. renders once, writes a float EXR, and prints one machine-readable line:
+        CYCLES_RESULT render_s=<s> import_s=<s> spp=<n> max_bounces=<n> res=<w>x<h>
+     render_s is the wall time of the render call (scene sync + BVH + path tracing + saving);
+     the caller can subtract nothing else from it.
+
+BOUNCES: prism's --max-depth D traces next-event estimation at the first D surface hits, so its
+longest path has D+1 segments (D=1 is direct lighting). Cycles' max_bounces B=0 is already
+direct lighting, so the same path length is B = D - 1. The per-type limits (diffuse, glossy,
+transmission, volume, transparent) are set to B as well so that only the total limit binds.
+"""
+
+import argparse
+import sys
+import time
+
+import bpy
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="cycles_render.py")
+    p.add_argument("--gltf", required=True, help="glTF 2.0 scene to import")
+    p.add_argument("--out", required=True, help="output OpenEXR path (float RGBA)")
+    p.add_argument("--res", default="512x512", help="WIDTHxHEIGHT")
+    p.add_argument("--spp", type=int, default=64, help="samples per pixel")
+    p.add_argument("--max-depth", type=int, default=8,
+                   help="prism-style maximum depth (bounces); Cycles gets max_bounces = this - 1")
+    p.add_argument("--seed", type=int, default=0, help="Cycles sampling seed")
+    p.add_argument("--threads", type=int, default=0, help="render threads, 0 = all cores")
+    p.add_argument("--bsdf", choices=["principled", "diffuse"], default="principled",
+                   help="keep the importer's Principled BSDF (specular 0) or use a Lambert Diffuse BSDF")
+    return p.parse_args(argv)
+
+
+def empty_scene():
+    """Remove every object of the factory start-up file and make the world black."""
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    world = bpy.data.worlds.new("black") if not bpy.data.worlds else bpy.data.worlds[0]
+    world.use_nodes = True
+    bg = world.node_tree.nodes.get("Background")
+    if bg is not None:
+        bg.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        bg.inputs["Strength"].default_value = 0.0
+    world.color = (0.0, 0.0, 0.0)
+    bpy.context.scene.world = world
+
+
+def import_gltf(path):
+    # Debian 12: Blender 3.4's importer uses numpy.bool, which numpy 1.24 removed. Restore the
+    # alias in this process only; nothing on disk changes.
+    import numpy
+    if not hasattr(numpy, "bool"):
+        numpy.bool = bool
+    bpy.ops.import_scene.gltf(filepath=path)
+
+
+def adjust_materials(bsdf_kind):
+    """Make the imported materials match glTF semantics (ior 1 = no specular layer)."""
+    for mat in bpy.data.materials:
+        if not mat.use_nodes:
+            continue
+        nodes, links = mat.node_tree.nodes, mat.node_tree.links
+        for node in list(nodes):
+            if node.type != "BSDF_PRINCIPLED":
+                continue
+            emission_strength = node.inputs["Emission Strength"].default_value
+            emission = tuple(node.inputs["Emission"].default_value)
+            if bsdf_kind == "principled":
+                if abs(node.inputs["IOR"].default_value - 1.0) < 1e-6:
+                    node.inputs["Specular"].default_value = 0.0
+                continue
+            # Lambert: Diffuse BSDF (roughness 0) plus, for emitters, an Emission shader.
+            out_links = [l for l in links if l.from_node == node]
+            diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+            diffuse.inputs["Color"].default_value = node.inputs["Base Color"].default_value
+            diffuse.inputs["Roughness"].default_value = 0.0
+            shader = diffuse
+            if emission_strength > 0 and any(c > 0 for c in emission[:3]):
+                em = nodes.new("ShaderNodeEmission")
+                em.inputs["Color"].default_value = emission
+                em.inputs["Strength"].default_value = emission_strength
+                add = nodes.new("ShaderNodeAddShader")
+                links.new(diffuse.outputs[0], add.inputs[0])
+                links.new(em.outputs[0], add.inputs[1])
+                shader = add
+            for l in out_links:
+                links.new(shader.outputs[0], l.to_socket)
+            nodes.remove(node)
+        print(f"cycles_render: material {mat.name}: {bsdf_kind}")
+
+
+def configure(args):
+    scene = bpy.context.scene
+    width, height = (int(v) for v in args.res.lower().split("x"))
+    cameras = [o for o in scene.objects if o.type == "CAMERA"]
+    if not cameras:
+        sys.exit("cycles_render: the glTF has no camera")
+    scene.camera = cameras[0]
+
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+    r.filter_size = 1.0  # Cycles' pixel filter width in pixels (its default is a 1.5 px Gaussian)
+    r.use_persistent_data = False
+    r.threads_mode = "FIXED" if args.threads > 0 else "AUTO"
+    if args.threads > 0:
+        r.threads = args.threads
+    r.image_settings.file_format = "OPEN_EXR"
+    r.image_settings.color_depth = "32"
+    r.image_settings.color_mode = "RGBA"
+    r.image_settings.exr_codec = "ZIP"
+    scene.view_settings.view_transform = "Standard"  # EXR is written linear anyway
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = args.spp
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.seed = args.seed
+    c.use_animated_seed = False
+    c.sample_clamp_direct = 0.0  # 0 = no clamping
+    c.sample_clamp_indirect = 0.0  # default 10: biased
+    c.blur_glossy = 0.0  # "filter glossy", default 1: biased
+    c.light_sampling_threshold = 0.0  # default 0.01 skips dim lights: biased
+    c.caustics_reflective = True
+    c.caustics_refractive = True
+    bounces = max(0, args.max_depth - 1)  # see BOUNCES in the module doc
+    c.max_bounces = bounces
+    c.diffuse_bounces = bounces
+    c.glossy_bounces = bounces
+    c.transmission_bounces = bounces
+    c.volume_bounces = bounces
+    c.transparent_max_bounces = bounces
+    c.film_exposure = 1.0
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    r.film_transparent = False
+    r.filepath = args.out
+    r.use_file_extension = False
+    return bounces, width, height
+
+
+def main():
+    args = parse_args()
+    t0 = time.perf_counter()
+    empty_scene()
+    import_gltf(args.gltf)
+    adjust_materials(args.bsdf)
+    bounces, width, height = configure(args)
+    t1 = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    t2 = time.perf_counter()
+    print(f"CYCLES_RESULT render_s={t2 - t1:.4f} import_s={t1 - t0:.4f} spp={args.spp} "
+          f"max_bounces={bounces} res={width}x{height} out={args.out}", flush=True)
+
+
+main()

@@ -1,0 +1,118 @@
+#include "bench/ray_workload.h"
+
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include "core/embree_device.h"
+#include "core/frame.h"
+#include "core/pcg32.h"
+#include "core/sampling.h"
+#include "core/spawn.h"
+#include "io/diagnostics.h"
+#include "io/scene_source.h"
+
+namespace prism::bench {
+namespace {
+
+RTCScene build_raw(const SceneDesc& desc) {
+  std::vector<float> vertices;
+  std::vector<uint32_t> indices;
+  for (const InstanceDesc& inst : desc.instances)
+    for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
+      const auto base = uint32_t(vertices.size() / 3);
+      for (const Vec3& p : prim.positions) {
+        const Vec3 w = inst.object_to_world.point(p);
+        vertices.insert(vertices.end(), {w.x, w.y, w.z});
+      }
+      for (uint32_t i : prim.indices) indices.push_back(base + i);
+    }
+  RTCScene scene = rtcNewScene(embree_device());
+  RTCGeometry geom = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), vertices.size() / 3 + 1));
+  std::copy(vertices.begin(), vertices.end(), v);
+  auto* ix = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), indices.size() / 3));
+  std::copy(indices.begin(), indices.end(), ix);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+RayWorkload make_workload(const Scene& scene, const CameraDesc& cam_desc) {
+  RayWorkload w;
+  const int size = 256;
+  const Camera camera(cam_desc, size, size);
+  Pcg32 rng(11, 12);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const Ray ray = camera.generate_ray(float(x) + rng.next_float(), float(y) + rng.next_float());
+      w.camera.push_back(ray);
+      SurfaceHit hit;
+      if (!scene.intersect(ray, hit)) continue;
+      const Vec3 n = dot(hit.ng, ray.dir) < 0 ? hit.ng : -hit.ng;
+      const Frame frame = Frame::from_normal(n);
+      w.bounce.push_back(spawn_ray(hit.p, hit.p_error, hit.ng, frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}))));
+      if (scene.emitters().empty()) continue;
+      const EmitterSample ls = scene.emitters().sample(hit.p, rng.next_float(), {rng.next_float(), rng.next_float()});
+      if (!(ls.pdf > 0) || ls.delta || ls.infinite) continue;
+      w.shadow.push_back(spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n));
+    }
+  return w;
+}
+
+RTCRayHit to_rayhit(const Ray& ray) {
+  RTCRayHit rh{};
+  rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.t_min;
+  rh.ray.tfar = ray.t_max;
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
+const BenchScene& bench_scene(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+  std::lock_guard lock(mutex);
+  auto& entry = cache[path];
+  if (entry) return *entry;
+  entry = std::make_unique<BenchScene>();
+  if (!std::filesystem::exists(path)) {
+    entry->skip_reason = path + " is absent (scripts/bench generates it)";
+    return *entry;
+  }
+  Diagnostics diag;
+  LoadedScene loaded = load_scene_source(path, diag, {});
+  const CameraDesc cam = select_camera(loaded.scene, "");
+  entry->raw = build_raw(loaded.scene);
+  entry->scene = std::make_unique<Scene>(std::move(loaded.scene));
+  entry->rays = make_workload(*entry->scene, cam);
+  return *entry;
+}
+
+bool raw_intersect(RTCScene scene, const Ray& ray, bool coherent) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCRayHit rh = to_rayhit(ray);
+  rtcIntersect1(scene, &context, &rh);
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+bool raw_occluded(RTCScene scene, const Ray& ray) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = to_rayhit(ray).ray;
+  rtcOccluded1(scene, &context, &r);
+  return r.tfar < 0;
+}
+
+}  // namespace prism::bench

@@ -18,11 +18,6 @@
 namespace prism {
 namespace {
 
-FloatImage read_float_image(const std::string& path) {
-  ImageDesc img = read_image_file(path, ColorSpace::Auto);
-  return {img.width, img.height, img.channels, std::move(img.texels)};
-}
-
 double metric_value(const ImageComparison& c, const std::string& metric) {
   if (metric == "rmse") return c.rmse;
   if (metric == "relmse") return c.all.rel_mse;
@@ -49,11 +44,11 @@ Rgb false_colour(float t) {
   return c;
 }
 
-void write_difference(const CompareOptions& o, const FloatImage& test, const FloatImage& reference) {
+void write_difference(const CompareOptions& o, const ImageDesc& test, const ImageDesc& reference) {
   const std::vector<float> error = relative_error_map(test, reference);
   const size_t n = error.size();
   std::vector<float> rgba(n * 4, 1.0f);
-  const bool exr = o.diff->size() > 4 && o.diff->substr(o.diff->size() - 4) == ".exr";
+  const bool exr = o.diff->ends_with(".exr");
   float scale = 1;
   if (!exr) {
     // Unless given, the 99th percentile maps to the top of the ramp, so a few outliers do not
@@ -77,7 +72,8 @@ void write_difference(const CompareOptions& o, const FloatImage& test, const Flo
 }
 
 int compare(const CompareOptions& o) {
-  const FloatImage test = read_float_image(o.test), reference = read_float_image(o.reference);
+  const ImageDesc test = read_image_file(o.test, ColorSpace::Auto),
+                  reference = read_image_file(o.reference, ColorSpace::Auto);
   ImageComparison c;
   try {
     c = compare_images(test, reference);

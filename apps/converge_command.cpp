@@ -45,7 +45,7 @@ std::vector<int> spp_series(const std::string& text) {
   return out;
 }
 
-FloatImage film_image(const Film& film) { return {film.width(), film.height(), 4, film.resolve_rgba()}; }
+ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
 
 struct Row {
   std::string setting;
@@ -67,11 +67,10 @@ int converge(const ConvergeOptions& o) {
 
   // A given reference fixes the resolution unless --res says otherwise (then sizes must agree).
   RenderOptions ro = o.render;
-  std::optional<FloatImage> reference;
+  std::optional<ImageDesc> reference;
   if (o.reference) {
-    ImageDesc img = read_image_file(*o.reference, ColorSpace::Linear);
-    reference = FloatImage{img.width, img.height, img.channels, std::move(img.texels)};
-    if (!ro.resolution) ro.resolution = fmt::format("{}x{}", img.width, img.height);
+    reference = read_image_file(*o.reference, ColorSpace::Linear);
+    if (!ro.resolution) ro.resolution = fmt::format("{}x{}", reference->width, reference->height);
   }
   PreparedRender p = prepare_render(ro);
   build_scene(p, ro.quiet);

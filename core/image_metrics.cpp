@@ -9,7 +9,7 @@
 namespace prism {
 namespace {
 
-void check_sizes(const FloatImage& t, const FloatImage& r) {
+void check_sizes(const ImageDesc& t, const ImageDesc& r) {
   if (t.width != r.width || t.height != r.height)
     throw std::invalid_argument("image sizes differ: " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                                 " vs " + std::to_string(r.width) + "x" + std::to_string(r.height));
@@ -17,11 +17,11 @@ void check_sizes(const FloatImage& t, const FloatImage& r) {
 }
 
 // Colour channel c of pixel i (grey images repeat their one channel).
-float colour(const FloatImage& img, size_t i, int c) {
-  return img.pixels[i * size_t(img.channels) + size_t(img.channels >= 3 ? c : 0)];
+float colour(const ImageDesc& img, size_t i, int c) {
+  return img.texels[i * size_t(img.channels) + size_t(img.channels >= 3 ? c : 0)];
 }
 
-bool finite_colour(const FloatImage& img, size_t i) {
+bool finite_colour(const ImageDesc& img, size_t i) {
   for (int c = 0; c < 3; ++c)
     if (!std::isfinite(colour(img, i, c))) return false;
   return true;
@@ -29,7 +29,7 @@ bool finite_colour(const FloatImage& img, size_t i) {
 
 }  // namespace
 
-ImageComparison compare_images(const FloatImage& test, const FloatImage& reference) {
+ImageComparison compare_images(const ImageDesc& test, const ImageDesc& reference) {
   check_sizes(test, reference);
   ImageComparison out;
   const size_t n = size_t(test.width) * size_t(test.height);
@@ -67,7 +67,7 @@ ImageComparison compare_images(const FloatImage& test, const FloatImage& referen
   return out;
 }
 
-std::vector<float> relative_error_map(const FloatImage& test, const FloatImage& reference) {
+std::vector<float> relative_error_map(const ImageDesc& test, const ImageDesc& reference) {
   check_sizes(test, reference);
   const size_t n = size_t(test.width) * size_t(test.height);
   std::vector<float> out(n, 0.0f);

@@ -5,13 +5,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace prism {
+#include "core/scene_desc.h"
 
-// An image as interleaved float channels, top row first.
-struct FloatImage {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;
-};
+namespace prism {
 
 struct ChannelError {
   double mean_test = 0, mean_reference = 0;
@@ -35,10 +31,10 @@ inline constexpr double kRelMseEpsilon = 1e-2;
 
 // Compares the colour channels of `test` with `reference`, which must be the same size.
 // Throws std::invalid_argument when the sizes differ.
-ImageComparison compare_images(const FloatImage& test, const FloatImage& reference);
+ImageComparison compare_images(const ImageDesc& test, const ImageDesc& reference);
 
 // Per-pixel relative error sqrt(mean over R,G,B of (t - r)^2 / (r^2 + epsilon)), 0 for pixels with a
 // non-finite value; for difference images.
-std::vector<float> relative_error_map(const FloatImage& test, const FloatImage& reference);
+std::vector<float> relative_error_map(const ImageDesc& test, const ImageDesc& reference);
 
 }  // namespace prism

@@ -6,10 +6,11 @@
 namespace prism {
 namespace {
 
-// Rec. 709 luminance weights.
-constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
-
-double luminance(const float rgb[3]) { return kLuminance[0] * rgb[0] + kLuminance[1] * rgb[1] + kLuminance[2] * rgb[2]; }
+Rgb mean_colour(const Film& film, int x, int y) {
+  float rgba[4];
+  film.mean(x, y, rgba);
+  return {rgba[0], rgba[1], rgba[2]};
+}
 
 }  // namespace
 
@@ -25,21 +26,14 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
 void SampleSchedule::update_floor(const Film& film) {
   double sum = 0;
   for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) {
-      float rgba[4];
-      film.mean(x, y, rgba);
-      sum += luminance(rgba);
-    }
+    for (int x = 0; x < film.width(); ++x) sum += luminance(mean_colour(film, x, y));
   floor_ = std::max(0.01 * sum / double(pixels_), 1e-30);
 }
 
 double SampleSchedule::relative_error(const Film& film, int x, int y) const {
-  float rgba[4];
-  film.mean(x, y, rgba);
   const Rgb v = film.variance_of_mean(x, y);
-  const double standard_error =
-      kLuminance[0] * std::sqrt(v.x) + kLuminance[1] * std::sqrt(v.y) + kLuminance[2] * std::sqrt(v.z);
-  return standard_error / std::max(luminance(rgba), floor_);
+  const double standard_error = luminance(Rgb(std::sqrt(v.x), std::sqrt(v.y), std::sqrt(v.z)));
+  return standard_error / std::max(double(luminance(mean_colour(film, x, y))), floor_);
 }
 
 bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target) {
@@ -60,14 +54,16 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
   }
 
   if (adaptive()) update_floor(film);
+  std::vector<uint32_t> counts(pixels_);  // samples each pixel has, up to the ceiling
+  for (size_t i = 0; i < pixels_; ++i)
+    counts[i] = uint32_t(std::min<uint64_t>(film.sample_count(int(i % size_t(width)), int(i / size_t(width))), max_spp_));
   uint64_t wanted = 0;
   for (size_t i = 0; i < pixels_; ++i) {
-    const int x = int(i % size_t(width)), y = int(i / size_t(width));
-    const auto count = uint32_t(std::min<uint64_t>(film.sample_count(x, y), max_spp_));
+    const uint32_t count = counts[i];
     uint32_t next = count;
     if (count < max_spp_ && !converged_[i]) {
       if (adaptive()) {
-        const double error = relative_error(film, x, y);
+        const double error = relative_error(film, int(i % size_t(width)), int(i / size_t(width)));
         if (error <= noise_target_) {
           converged_[i] = 1;
         } else {
@@ -95,10 +91,7 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
     if (double(wanted) > affordable) {
       auto increments_capped_at = [&](uint64_t k) {
         uint64_t total = 0;
-        for (size_t i = 0; i < pixels_; ++i) {
-          const int x = int(i % size_t(width)), y = int(i / size_t(width));
-          total += std::min<uint64_t>(target[i] - std::min<uint64_t>(film.sample_count(x, y), target[i]), k);
-        }
+        for (size_t i = 0; i < pixels_; ++i) total += std::min<uint64_t>(target[i] - counts[i], k);
         return total;
       };
       uint64_t lo = 0, hi = max_spp_;
@@ -110,10 +103,8 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
       if (lo == 0) return false;
       wanted = 0;
       for (size_t i = 0; i < pixels_; ++i) {
-        const int x = int(i % size_t(width)), y = int(i / size_t(width));
-        const uint32_t count = uint32_t(std::min<uint64_t>(film.sample_count(x, y), target[i]));
-        target[i] = count + uint32_t(std::min<uint64_t>(target[i] - count, lo));
-        wanted += target[i] - count;
+        target[i] = counts[i] + uint32_t(std::min<uint64_t>(target[i] - counts[i], lo));
+        wanted += target[i] - counts[i];
       }
     }
   } else if (adaptive()) {

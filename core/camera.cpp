@@ -61,8 +61,10 @@ CameraDesc select_camera(const SceneDesc& scene, const std::string& which) {
     if (index < scene.cameras.size()) return scene.cameras[index];
   }
   std::string names;
-  for (size_t i = 0; i < scene.cameras.size(); ++i)
-    names += (i ? ", " : "") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    if (i) names += ", ";
+    names += std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  }
   throw std::invalid_argument("no camera named or numbered '" + which + "'; the scene has: " + names);
 }
 

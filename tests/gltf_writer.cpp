@@ -45,16 +45,11 @@ int GltfWriter::add_positions(const std::vector<float>& xyz) {
 }
 
 int GltfWriter::add_indices(const std::vector<uint32_t>& indices, int component_type) {
+  // Little-endian, byte by byte (glTF 2.0 §3.6.2.1).
+  const int size = component_type == 5121 ? 1 : component_type == 5123 ? 2 : 4;
   std::vector<uint8_t> bytes;
-  for (uint32_t i : indices) {
-    if (component_type == 5121) bytes.push_back(static_cast<uint8_t>(i));
-    if (component_type == 5123) {
-      const auto v = static_cast<uint16_t>(i);
-      bytes.insert(bytes.end(), reinterpret_cast<const uint8_t*>(&v), reinterpret_cast<const uint8_t*>(&v) + 2);
-    }
-    if (component_type == 5125)
-      bytes.insert(bytes.end(), reinterpret_cast<const uint8_t*>(&i), reinterpret_cast<const uint8_t*>(&i) + 4);
-  }
+  for (uint32_t i : indices)
+    for (int b = 0; b < size; ++b) bytes.push_back(static_cast<uint8_t>(i >> (8 * b)));
   return add_accessor(add_view(bytes.data(), bytes.size()), component_type, indices.size(), "SCALAR");
 }
 

@@ -81,7 +81,10 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       break;
     }
     if (depth == 0) out.alpha = 1.0f;
-    beta *= beer_lambert(media.sigma_a(), hit.t * length(ray.dir));  // Beer-Lambert along the segment
+    // Beer-Lambert along the segment, measured between the surface points themselves: the spawned
+    // origin sits off its surface by the hit's error bound, which far from the world origin is a
+    // visible part of a thin slab's thickness.
+    beta *= beer_lambert(media.sigma_a(), depth == 0 ? hit.t * length(ray.dir) : length(hit.p - prev_p));
     const Vec3 wo = -normalize(ray.dir);
 
     // Emission reached by the previous bounce: weighted against next-event estimation by the

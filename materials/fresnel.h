@@ -9,6 +9,12 @@
 
 namespace prism {
 
+// eta^2 cos_t^2 = eta^2 - sin_i^2 for light at cosine cos_i (>= 0) refracting into relative index
+// eta (Snell: sin_t = sin_i / eta); zero or below means total internal reflection. Written as
+// (eta - 1)(eta + 1) + cos_i^2 so it stays accurate near the critical angle, and shared by
+// Fresnel and refraction so both agree on where TIR begins.
+inline float refracted_cos2_scaled(float cos_i, float eta) { return (eta - 1.0f) * (eta + 1.0f) + cos_i * cos_i; }
+
 struct FresnelSP {
   float s = 1, p = 1;  // reflectance of s- (perpendicular) and p- (parallel) polarised light
 };
@@ -23,12 +29,16 @@ inline FresnelSP fresnel_dielectric_sp(float cos_i, float eta) {
     eta = 1.0f / eta;
     cos_i = -cos_i;
   }
-  const float sin2_i = std::max(0.0f, 1.0f - cos_i * cos_i);
-  const float sin2_t = sin2_i / (eta * eta);
-  if (sin2_t >= 1.0f) return {1.0f, 1.0f};
-  const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
-  const float r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-  const float r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  // (eta cos_t)^2 = eta^2 - sin_i^2 = (eta - 1)(eta + 1) + cos_i^2. Forming 1 - cos_i^2 first
+  // would round sin_i^2 to 2^-24 absolute, which near the critical angle of an index close to 1
+  // moves R by up to ~0.1; here the cancellation is between two terms that are each exact to
+  // a few ulps (see tests/extremes/test_dielectric_extremes.cpp).
+  const float eta2_cos2_t = refracted_cos2_scaled(cos_i, eta);
+  if (eta2_cos2_t <= 0.0f) return {1.0f, 1.0f};
+  const float eta_cos_t = std::sqrt(eta2_cos2_t);
+  const float eta2_cos_i = eta * eta * cos_i;
+  const float r_s = (cos_i - eta_cos_t) / (cos_i + eta_cos_t);
+  const float r_p = (eta2_cos_i - eta_cos_t) / (eta2_cos_i + eta_cos_t);  // (eta cos_i - cos_t) x eta over the same
   return {r_s * r_s, r_p * r_p};
 }
 
@@ -54,9 +64,9 @@ inline Vec3 reflect(const Vec3& wo, const Vec3& n) { return -wo + n * (2.0f * do
 inline bool refract(const Vec3& wo, const Vec3& n, float eta, Vec3& wt) {
   const float c1 = dot(wo, n);
   const float inv = 1.0f / eta;
-  const float c2_sq = 1.0f - inv * inv * std::max(0.0f, 1.0f - c1 * c1);
-  if (c2_sq <= 0.0f) return false;  // TIR (c2^2 < 0; = 0 is the grazing limit)
-  wt = -wo * inv + n * (inv * c1 - std::sqrt(c2_sq));
+  const float eta2_c2_sq = refracted_cos2_scaled(std::min(std::abs(c1), 1.0f), eta);
+  if (eta2_c2_sq <= 0.0f) return false;  // TIR (c2^2 < 0; = 0 is the grazing limit)
+  wt = -wo * inv + n * (inv * c1 - std::sqrt(eta2_c2_sq) * inv);
   return true;
 }
 

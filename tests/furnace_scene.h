@@ -1,11 +1,20 @@
 // A furnace for tests: a closed, uniformly emitting diffuse box whose radiance is known exactly.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "core/camera.h"
+#include "core/renderer.h"
+#include "core/sampler_factory.h"
+#include "core/scene.h"
 #include "core/scene_desc.h"
+#include "integrators/path_integrator.h"
 #include "scene_builders.h"
+#include "statistics.h"
 
 namespace prism::test {
 
@@ -14,10 +23,11 @@ inline double furnace_radiance(double le, double albedo, int max_depth) {
   return le * (1.0 - std::pow(albedo, max_depth + 1)) / (1.0 - albedo);
 }
 
-inline SceneDesc furnace_box(double le, double albedo, float scale = 1.0f) {
+// The box spans about 2 x scale, centred near `offset`.
+inline SceneDesc furnace_box(double le, double albedo, float scale = 1.0f, const Vec3& offset = Vec3(0.0f)) {
   SceneDesc desc;
   const int m = add_material(desc, Rgb(float(albedo)), Rgb(float(le)));
-  add_inward_box(desc, Vec3(-1.0f, -0.7f, -1.3f) * scale, Vec3(1.2f, 0.9f, 1.0f) * scale, m);
+  add_inward_box(desc, Vec3(-1.0f, -0.7f, -1.3f) * scale + offset, Vec3(1.2f, 0.9f, 1.0f) * scale + offset, m);
   return desc;
 }
 
@@ -27,6 +37,41 @@ inline CameraDesc furnace_camera(const Vec3& eye = Vec3(0.1f)) {
   cam.camera_to_world = Transform::look_at(eye, eye + Vec3(0.3f, 0.2f, -1.0f), Vec3(0, 1, 0));
   cam.yfov = 1.6f;
   return cam;
+}
+
+// Renders a small image from inside the enclosure with each sampler; each pixel mean is an
+// independent estimate (pixels are scrambled independently), so the image mean's standard error
+// is the spread of pixel means over sqrt(pixels).
+inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double albedo, int max_depth, int rr_start) {
+  const CameraDesc cam = furnace_camera(eye);
+  const Scene scene(std::move(desc));
+  for (const std::string& sampler : sampler_names()) {
+    RenderSettings settings;
+    settings.width = settings.height = 24;
+    settings.spp = 32;
+    settings.max_depth = max_depth;
+    settings.rr_start_depth = rr_start;
+    settings.seed = 1234;
+    settings.sampler = sampler;
+    Film film(settings.width, settings.height);
+    const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+    const RenderStats stats = render(scene, Camera(cam, settings.width, settings.height), integrator, settings, film);
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+    const double expected = furnace_radiance(le, albedo, max_depth);
+    for (int c = 0; c < 3; ++c) {
+      RunningStats pixels;
+      for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+          float rgba[4];
+          film.mean(x, y, rgba);
+          pixels.add(rgba[c]);
+        }
+      // The float rounding of a sum of ~d terms bounds how exact even a noiseless estimate is.
+      const double tolerance = kSigmas * pixels.standard_error() + 1e-5 * expected;
+      EXPECT_NEAR(pixels.mean(), expected, tolerance) << sampler << " sampler, channel " << c << ", albedo "
+                                                      << albedo << ", depth " << max_depth << ", rr from " << rr_start;
+    }
+  }
 }
 
 }  // namespace prism::test

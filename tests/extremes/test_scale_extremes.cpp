@@ -1,0 +1,158 @@
+// Scale at the extremes: the same scenes scaled by 1e-4 to 1e6, and moved 1e5 from the origin,
+// give the same furnace radiance and slab transmittance, no shadow acne and no light leaks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/renderer.h"
+#include "core/sampler.h"
+#include "core/scene.h"
+#include "furnace_scene.h"
+#include "integrators/path_integrator.h"
+#include "scene_builders.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+constexpr int kNoRoulette = 1 << 20;
+const std::vector<float> kScales = {1e-4f, 1e-2f, 1.0f, 1e2f, 1e4f, 1e6f};
+const Vec3 kFar(1e5f, -1e5f, 1e5f);  // the translated cell: float spacing there is 2^-7
+
+// Every scale, then scale 1 moved far from the origin: {scale, offset}.
+std::vector<std::pair<float, Vec3>> placements() {
+  std::vector<std::pair<float, Vec3>> p;
+  for (float s : kScales) p.push_back({s, Vec3(0.0f)});
+  p.push_back({1.0f, kFar});
+  return p;
+}
+
+void expect_furnace_at(float s, const Vec3& offset) {
+  SCOPED_TRACE("scale " + std::to_string(s) + " offset " + std::to_string(offset.x));
+  test::expect_furnace(test::furnace_box(1.0, 0.5, s, offset), Vec3(0.05f * s) + offset, 1.0, 0.5, 4, kNoRoulette);
+}
+
+TEST(ScaleExtremes, FurnaceRadianceIsTheSameAtEveryScale) {
+  for (float s : kScales) expect_furnace_at(s, Vec3(0.0f));
+}
+
+// KNOWN FAILURE (docs/NUMERICS.md): 1e5 from the origin the furnace reads 1.893 instead of 1.9375
+// (-2.3%). The loss scales with the spawn offset (32 ulps of the coordinates, 0.19 units there):
+// 0.75% with an offset four times smaller. Disabled until the renderer is fixed.
+TEST(ScaleExtremes, DISABLED_FurnaceRadianceHoldsFarFromTheOrigin) { expect_furnace_at(1.0f, kFar); }
+
+// Renders `desc` with the path tracer at max depth `depth` from a camera at eye looking at target.
+Film render_view(SceneDesc desc, const Vec3& eye, const Vec3& target, int depth, int size = 32, int spp = 4) {
+  const Scene scene(std::move(desc));
+  CameraDesc cam;
+  cam.camera_to_world = Transform::look_at(eye, target, Vec3(0, 0, 1));
+  cam.yfov = 0.5f;
+  RenderSettings settings;
+  settings.width = settings.height = size;
+  settings.spp = spp;
+  settings.max_depth = depth;
+  Film film(size, size);
+  const RenderStats stats =
+      render(scene, Camera(cam, size, size), PathIntegrator(depth, kNoRoulette), settings, film);
+  EXPECT_EQ(stats.nonfinite_samples, 0u);
+  return film;
+}
+
+// A plane lit by a sun 60 degrees from its normal and seen at a grazing 75 degrees: direct light
+// is deterministic (a delta light, no other surface), so every pixel must be exactly
+// albedo / pi x E cos 60; a self-shadowed pixel (acne) would be black.
+TEST(ScaleExtremes, LitPlaneHasNoAcne) {
+  const float albedo = 0.5f, lux = 3.0f;
+  const double expected = albedo / kPi * lux * 0.5;
+  for (const auto& [s, offset] : placements()) {
+    SceneDesc desc;
+    const int m = test::add_material(desc, Rgb(albedo));
+    test::add_quad(desc, Vec3(-100, -100, 0) * s + offset, Vec3(200, 0, 0) * s, Vec3(0, 200, 0) * s, m);
+    PunctualLightDesc sun;
+    sun.type = LightType::Directional;
+    sun.direction = normalize(Vec3(std::sin(kPi / 3), 0.0f, -std::cos(kPi / 3)));
+    sun.intensity = Rgb(lux);
+    desc.lights.push_back(sun);
+    const Vec3 eye = Vec3(0.0f, -std::sin(1.309f), std::cos(1.309f)) * (4.0f * s) + offset;  // 75 degrees off the normal
+    const Film film = render_view(std::move(desc), eye, offset, 1);
+    int covered = 0, wrong = 0;
+    for (int y = 0; y < film.height(); ++y)
+      for (int x = 0; x < film.width(); ++x) {
+        float rgba[4];
+        film.mean(x, y, rgba);
+        if (rgba[3] < 1.0f) continue;
+        ++covered;
+        wrong += std::abs(rgba[0] - expected) > 1e-5 * expected;
+      }
+    EXPECT_EQ(covered, film.width() * film.height()) << "scale " << s;
+    EXPECT_EQ(wrong, 0) << "scale " << s << " offset " << offset.x;
+  }
+}
+
+// A closed box (12 triangles) with the camera inside looking into a corner, a sun and a bright
+// emitter outside: any light inside leaked through an edge or a corner.
+void expect_no_leaks(float s, const Vec3& offset) {
+  {
+    SceneDesc desc;
+    const int wall = test::add_material(desc, Rgb(0.8f));
+    test::add_inward_box(desc, Vec3(-1, -1, -1) * s + offset, Vec3(1, 1, 1) * s + offset, wall);
+    const int light = test::add_material(desc, Rgb(0.0f), Rgb(1e4f), /*double_sided=*/true);
+    test::add_quad(desc, Vec3(-3, -3, 2) * s + offset, Vec3(6, 0, 0) * s, Vec3(0, 6, 0) * s, light);
+    PunctualLightDesc sun;
+    sun.type = LightType::Directional;
+    sun.direction = normalize(Vec3(0.3f, 0.5f, -1.0f));
+    sun.intensity = Rgb(1e4f);
+    desc.lights.push_back(sun);
+    const Film film = render_view(std::move(desc), Vec3(-0.5f) * s + offset, Vec3(1.0f) * s + offset, 8, 32, 16);
+    double brightest = 0;
+    for (int y = 0; y < film.height(); ++y)
+      for (int x = 0; x < film.width(); ++x) {
+        float rgba[4];
+        film.mean(x, y, rgba);
+        brightest = std::max({brightest, double(rgba[0]), double(rgba[1]), double(rgba[2])});
+      }
+    EXPECT_EQ(brightest, 0.0) << "scale " << s << " offset " << offset.x;
+  }
+}
+
+TEST(ScaleExtremes, NoLightLeaksIntoAClosedBox) {
+  for (float s : kScales) expect_no_leaks(s, Vec3(0.0f));
+}
+
+// KNOWN FAILURE (docs/NUMERICS.md): 1e5 from the origin light reaches the inside of the box; the
+// same cause as the furnace's loss there is suspected. Disabled until the renderer is fixed.
+TEST(ScaleExtremes, DISABLED_NoLightLeaksIntoAClosedBoxFarFromTheOrigin) { expect_no_leaks(1.0f, kFar); }
+
+// Radiance along -z through a slab of index 1 (no refraction, no reflection: one deterministic
+// path) that absorbs with attenuation distance 0.4 x scale: exp(-sigma d) at every scale. Far
+// from the origin the surface points themselves are only known to a float spacing there, so the
+// thickness is, to 2 spacings per face.
+TEST(ScaleExtremes, GlassSlabTransmitsTheSameAtEveryScale) {
+  const float thickness = 0.25f, colour = 0.3f, le = 2.0f;
+  const double expected = le * std::exp(std::log(double(colour)) / 0.4 * thickness);
+  for (const auto& [s, offset] : placements()) {
+    SceneDesc desc;
+    const int light = test::add_material(desc, Rgb(0.0f), Rgb(le));
+    test::add_quad(desc, Vec3(-50, -50, -3) * s + offset, Vec3(100, 0, 0) * s, Vec3(0, 100, 0) * s, light);
+    const int glass = test::add_glass(desc, 1.0f, Rgb(colour), 0.4f * s);
+    test::add_box(desc, Vec3(-5, -5, -thickness) * s + offset, Vec3(5, 5, 0) * s + offset, glass);
+    const float spacing = std::nextafter(offset.x, INFINITY) - offset.x;  // 0 at the origin
+    const double tolerance = expected * (1e-4 + std::log(1.0 / colour) / (0.4 * s) * 4.0 * spacing);
+    const Scene scene(std::move(desc));
+    const PathIntegrator integrator(16, kNoRoulette);
+    IndependentSampler sampler(3);
+    RayCounters counters;
+    for (int i = 0; i < 16; ++i) {
+      sampler.start_pixel_sample(0, 0, uint64_t(i));
+      const Vec3 from = Vec3(0.01f * i, -0.02f * i, 2.0f) * s + offset;
+      const RadianceSample L = integrator.li(scene, Ray{from, Vec3(0, 0, -1)}, sampler, counters);
+      EXPECT_NEAR(L.radiance.x, expected, tolerance) << "scale " << s << " offset " << offset.x;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace prism

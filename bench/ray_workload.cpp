@@ -7,6 +7,7 @@
 #include "core/embree_device.h"
 #include "core/frame.h"
 #include "core/pcg32.h"
+#include "core/render_origin.h"
 #include "core/sampling.h"
 #include "core/spawn.h"
 #include "io/diagnostics.h"
@@ -91,6 +92,8 @@ const BenchScene& bench_scene(const std::string& path) {
   }
   Diagnostics diag;
   LoadedScene loaded = load_scene_source(path, diag, {});
+  // The raw ceiling traces the same coordinates prism renders in.
+  move_origin(loaded.scene, choose_render_origin(loaded.scene));
   const CameraDesc cam = select_camera(loaded.scene, "");
   entry->raw = build_raw(loaded.scene);
   entry->scene = std::make_unique<Scene>(std::move(loaded.scene));

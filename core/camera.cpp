@@ -25,6 +25,12 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc), wid
   half_w_ = half_h_ * aspect;
 }
 
+Camera Camera::relative_to(const Vec3& origin) const {
+  CameraDesc moved = desc_;
+  moved.camera_to_world = Transform::translate(-origin) * desc_.camera_to_world;
+  return Camera(moved, width_, height_);
+}
+
 Ray Camera::generate_ray(float fx, float fy) const {
   const float sx = (2.0f * fx / static_cast<float>(width_) - 1.0f) * half_w_;
   const float sy = (1.0f - 2.0f * fy / static_cast<float>(height_)) * half_h_;

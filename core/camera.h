@@ -17,6 +17,10 @@ class Camera {
 
   const CameraDesc& desc() const { return desc_; }
 
+  // The same camera in coordinates whose origin sits at world position `origin` (a scene's render
+  // origin, Scene::origin()); the shift composes in double, before anything is rounded to float.
+  Camera relative_to(const Vec3& origin) const;
+
  private:
   CameraDesc desc_;
   int width_, height_;

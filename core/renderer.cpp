@@ -15,8 +15,9 @@
 
 namespace prism {
 
-RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
+RenderStats render(const Scene& scene, const Camera& world_camera, const Integrator& integrator,
                    const RenderSettings& settings, Film& film, RenderProgress* progress) {
+  const Camera camera = world_camera.relative_to(scene.origin());  // rays in the scene's coordinates
   const int width = film.width(), height = film.height();
   const int tile = std::max(1, settings.tile_size);
   const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;

@@ -7,6 +7,7 @@
 
 #include "core/embree_device.h"
 #include "core/hash.h"
+#include "core/render_origin.h"
 #include "core/spawn.h"
 #include "core/sphere_geometry.h"
 #include "core/tangents.h"
@@ -148,6 +149,8 @@ void Scene::attach_alpha_filter(RTCGeometry geom, int mesh, int primitive) {
 Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alpha_(alpha) {
   const auto start = std::chrono::steady_clock::now();
   validate_scene_desc(desc_);
+  origin_ = choose_render_origin(desc_);
+  move_origin(desc_, origin_);
   features_ = desc_.features();
   bake_single_use_meshes();
   RTCDevice device = embree_device();

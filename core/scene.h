@@ -24,7 +24,9 @@ class Scene {
   // builds the BVH. A mesh placed once is transformed to world space and goes straight into
   // the top-level BVH; a mesh placed several times gets its own BVH, instanced per placement
   // (instancing costs a ray transform per visit, so only scenes that reuse meshes pay it).
-  // All spheres share one user geometry.
+  // All spheres share one user geometry. A scene far from its file's origin is moved to a render
+  // origin first (core/render_origin.h): everything the scene hands out or takes in (desc(),
+  // rays, hits, emitter samples) is relative to origin().
   // With `alpha`, primitives whose material has alphaMode MASK or BLEND get Embree filter
   // functions: MASK rejects hits below the cutoff; BLEND keeps a hit with probability alpha,
   // decided by a hash of the ray and the hit so every run makes the same choice. Without it
@@ -40,6 +42,8 @@ class Scene {
   bool occluded(const Ray& ray) const;
 
   const SceneDesc& desc() const { return desc_; }
+  // The world position of the coordinates' origin: world = scene coordinates + origin().
+  const Vec3& origin() const { return origin_; }
   const Emitters& emitters() const { return emitters_; }
   const SceneFeatures& features() const { return features_; }
   double build_seconds() const { return build_seconds_; }
@@ -71,6 +75,7 @@ class Scene {
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 
   SceneDesc desc_;
+  Vec3 origin_{0.0f};
   SceneFeatures features_;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> mesh_scenes_;  // per mesh; null for meshes baked into the top level

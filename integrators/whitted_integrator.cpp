@@ -14,12 +14,12 @@ namespace prism {
 RadianceSample WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler&, RayCounters& counters) const {
   ++counters.camera;
   RadianceSample out;
-  out.radiance = trace(scene, camera_ray, 0, MediumStack(), counters, &out.alpha);
+  out.radiance = trace(scene, camera_ray, nullptr, 0, MediumStack(), counters, &out.alpha);
   return out;
 }
 
-Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, const MediumStack& media,
-                             RayCounters& counters, float* alpha) const {
+Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* from, int depth,
+                             const MediumStack& media, RayCounters& counters, float* alpha) const {
   SurfaceHit hit;
   if (!scene.intersect(ray, hit, depth == 0)) {
     const EnvironmentLight& env = scene.emitters().environment();
@@ -28,7 +28,8 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
   if (alpha) *alpha = 1.0f;
   const SceneDesc& desc = scene.desc();
   const Vec3 wo = -normalize(ray.dir);
-  const Rgb absorbed = beer_lambert(media.sigma_a(), hit.t * length(ray.dir));
+  // Measured between the surface points, not from the offset origin (as in the path tracer).
+  const Rgb absorbed = beer_lambert(media.sigma_a(), from ? length(hit.p - *from) : hit.t * length(ray.dir));
   Rgb L = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
   if (depth >= max_depth_) return L * absorbed;
 
@@ -76,7 +77,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
     const Vec3 wr = reflect(wo, n_wo);
     if (dot(wr, ng) * dot(wo, ng) > 0) {
       ++counters.extension;
-      L += reflect_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wr), depth + 1, media, counters, nullptr);
+      L += reflect_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wr), &hit.p, depth + 1, media, counters, nullptr);
     }
   }
 
@@ -84,7 +85,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
   if (!is_black(transmit_weight)) {
     if (!volume) {
       ++counters.extension;
-      L += transmit_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, -wo), depth + 1, media, counters, nullptr);
+      L += transmit_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, -wo), &hit.p, depth + 1, media, counters, nullptr);
     } else {
       const Vec3 n = from_front ? n_front : -n_front;  // on wo's side
       const float etap = from_front ? eta : 1.0f / eta;
@@ -94,7 +95,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, int depth, cons
         inside.cross(material, hit.material, from_front);
         ++counters.extension;
         L += transmit_weight * (1.0f / (etap * etap)) *
-             trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wt), depth + 1, inside, counters, nullptr);
+             trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wt), &hit.p, depth + 1, inside, counters, nullptr);
       }
     }
   }

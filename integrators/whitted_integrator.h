@@ -18,8 +18,10 @@ class WhittedIntegrator final : public Integrator {
                     RayCounters& counters) const override;
 
  private:
-  Rgb trace(const Scene& scene, const Ray& ray, int depth, const MediumStack& media, RayCounters& counters,
-            float* alpha) const;
+  // `from` is the surface point a secondary ray leaves (its origin is offset off it), null for
+  // the camera ray; `alpha` receives coverage for the camera ray.
+  Rgb trace(const Scene& scene, const Ray& ray, const Vec3* from, int depth, const MediumStack& media,
+            RayCounters& counters, float* alpha) const;
 
   int max_depth_;
 };

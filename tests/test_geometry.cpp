@@ -48,9 +48,9 @@ TEST(SceneHits, SphereHitHasOutwardNormalAndExactPoint) {
   test::add_sphere(desc, Vec3(1, 2, 3), 0.5f, m);
   const Scene scene(std::move(desc));
   SurfaceHit hit;
-  ASSERT_TRUE(scene.intersect(Ray{Vec3(1, 2, 10), Vec3(0, 0, -1)}, hit));
+  ASSERT_TRUE(scene.intersect(Ray{Vec3(1, 2, 10) - scene.origin(), Vec3(0, 0, -1)}, hit));
   EXPECT_NEAR(hit.t, 6.5f, 1e-5f);
-  EXPECT_NEAR(hit.p.z, 3.5f, 1e-6f);
+  EXPECT_NEAR(hit.p.z + scene.origin().z, 3.5f, 1e-6f);  // the scene is moved to its own centre
   EXPECT_NEAR(hit.ng.z, 1.0f, 1e-6f);
   EXPECT_EQ(hit.material, m);
   EXPECT_EQ(hit.emitter, -1);
@@ -163,8 +163,12 @@ TEST(SpawnedRays, NeverReHitTheirOwnSurface) {
       // A sliver triangle pair and a sphere, both around `origin`.
       test::add_quad(desc, origin + Vec3(-1, -1e-3f, 0) * scale, Vec3(2, 0, 0) * scale, Vec3(0.5f, 2e-3f, 0.3f) * scale, m);
       test::add_sphere(desc, origin + Vec3(0, 0, 5) * scale, 1.0f * scale, m);
+      // A speck on the far side keeps the scene's centre at 0, so it stays where it is (not moved to
+      // a render origin) and the hits really are offset * scale from the origin.
+      if (offset > 0) test::add_sphere(desc, -origin, 1e-3f * scale, m);
       const Scene scene(std::move(desc));
-      int failures = 0;
+      ASSERT_EQ(scene.origin(), Vec3(0.0f));
+      int failures = 0, hits = 0;
       for (int i = 0; i < 2000; ++i) {
         // Find a point on each surface by casting at it, then leave in a random direction.
         const bool sphere = i % 2;
@@ -172,6 +176,7 @@ TEST(SpawnedRays, NeverReHitTheirOwnSurface) {
         const Vec3 from = target + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * (3.0f * scale);
         SurfaceHit hit;
         if (!scene.intersect(Ray{from, target - from}, hit)) continue;
+        ++hits;
         const Vec3 out_dir = face_forward(hit.ng, from - hit.p);
         Vec3 w = sample_cosine_hemisphere({rng.next_float(), rng.next_float()});
         const Frame f = Frame::from_normal(out_dir);
@@ -186,6 +191,7 @@ TEST(SpawnedRays, NeverReHitTheirOwnSurface) {
           if (again.t < 1e-3f * scale) ++failures;
         }
       }
+      EXPECT_GT(hits, 1000) << "scale " << scale << " offset " << offset;
       EXPECT_EQ(failures, 0) << "scale " << scale << " offset " << offset;
     }
   }

@@ -42,8 +42,8 @@ inline CameraDesc furnace_camera(const Vec3& eye = Vec3(0.1f)) {
 // Renders a small image from inside the enclosure with each sampler; each pixel mean is an
 // independent estimate (pixels are scrambled independently), so the image mean's standard error
 // is the spread of pixel means over sqrt(pixels).
-inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double albedo, int max_depth, int rr_start) {
-  const CameraDesc cam = furnace_camera(eye);
+inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo, int max_depth, int rr_start,
+                           double expected) {
   const Scene scene(std::move(desc));
   for (const std::string& sampler : sampler_names()) {
     RenderSettings settings;
@@ -57,7 +57,6 @@ inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double al
     const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
     const RenderStats stats = render(scene, Camera(cam, settings.width, settings.height), integrator, settings, film);
     EXPECT_EQ(stats.nonfinite_samples, 0u);
-    const double expected = furnace_radiance(le, albedo, max_depth);
     for (int c = 0; c < 3; ++c) {
       RunningStats pixels;
       for (int y = 0; y < film.height(); ++y)
@@ -72,6 +71,12 @@ inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double al
                                                       << albedo << ", depth " << max_depth << ", rr from " << rr_start;
     }
   }
+}
+
+// The same, from furnace_camera(eye), against the closed form.
+inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double albedo, int max_depth, int rr_start) {
+  expect_furnace(std::move(desc), furnace_camera(eye), albedo, max_depth, rr_start,
+                 furnace_radiance(le, albedo, max_depth));
 }
 
 }  // namespace prism::test

@@ -344,12 +344,11 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
 void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {
   const SphereDesc& s = desc_.spheres[rh.hit.primID];
   // Re-project onto the sphere: o + t d carries the error of t; the direction from the centre
-  // does not drift off the surface.
-  // Done in double so a small sphere far from the ray origin keeps its precision, and with the
-  // root solved again in double: Embree hands t back as a float, whose rounding alone (2^-24 t)
-  // tilted the normal of a 1e-5 sphere seen from 1e-2 away by 3e-5 rad near its silhouette.
-  // Embree's t is the float nearest the root the callback took; near the silhouette both roots can
-  // round to it, so the first root that float could stand for wins, as in the callback.
+  // does not drift off the surface. All in double, so a small sphere far from the ray origin keeps
+  // its precision, and from the root solved again: Embree hands t back as a float, whose rounding
+  // alone (2^-24 t) tilted the normal of a 1e-5 sphere seen from 1e-2 away by 3e-5 rad. Near the
+  // silhouette both roots can round to that float; the first it could stand for wins, as in the
+  // intersection callback.
   double t_hit = hit.t, t0, t1;
   if (sphere_roots(s.center, s.radius, ray, t0, t1)) {
     const double slack = std::abs(t_hit) * 0x1p-23;  // twice float rounding

@@ -7,6 +7,7 @@
 #include "core/scene.h"
 #include "integrators/path_integrator.h"
 #include "materials/material_eval.h"
+#include "radiance_stats.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
@@ -85,16 +86,10 @@ TEST(Alpha, SpheresCarryAlphaModesToo) {
     test::add_sphere(desc, Vec3(0, 0, 1), 0.8f, shell);
     test::add_quad(desc, Vec3(-50, -50, -1), Vec3(100, 0, 0), Vec3(0, 100, 0), test::add_material(desc, Rgb(0.0f), Rgb(1.0f)));
     const Scene scene(std::move(desc), &material_alpha);
-    const PathIntegrator path(6, 1 << 20);
-    IndependentSampler sampler(1);
-    RayCounters counters;
     Pcg32 rng(4, 5);
-    test::RunningStats stats;
-    for (int i = 0; i < 40000; ++i) {
-      const Ray ray{Vec3(0.2f * rng.next_float(), 0.2f * rng.next_float(), 3), Vec3(0, 0, -1)};
-      sampler.start_pixel_sample(0, 0, uint64_t(i));
-      stats.add(path.li(scene, ray, sampler, counters).radiance.x);
-    }
+    const test::RunningStats stats = test::radiance_stats(scene, PathIntegrator(6, 1 << 20), 40000, {.seed = 1}, [&](int) {
+      return Ray{Vec3(0.2f * rng.next_float(), 0.2f * rng.next_float(), 3), Vec3(0, 0, -1)};
+    });
     if (mode == MaterialDesc::AlphaMode::Mask) {
       EXPECT_EQ(stats.mean(), 1.0);
     } else {

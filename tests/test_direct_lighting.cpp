@@ -7,6 +7,7 @@
 #include "core/sampler.h"
 #include "core/scene.h"
 #include "integrators/path_integrator.h"
+#include "radiance_stats.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
@@ -17,16 +18,8 @@ constexpr double kAlbedo = 0.5;
 
 // Mean radiance leaving the plane at (x, y, 0) toward +z, estimated with max depth 1 (direct light).
 test::RunningStats estimate(const Scene& scene, float x, float y, int samples) {
-  const PathIntegrator integrator(1, 1 << 20);
-  IndependentSampler sampler(77);
-  RayCounters counters;
-  test::RunningStats stats;
-  for (int i = 0; i < samples; ++i) {
-    sampler.start_pixel_sample(0, 0, uint64_t(i));
-    const Ray ray{Vec3(x, y, 0.05f), Vec3(0, 0, -1), 0.0f, 1.0f};
-    stats.add(integrator.li(scene, ray, sampler, counters).radiance.x);
-  }
-  return stats;
+  return test::radiance_stats(scene, PathIntegrator(1, 1 << 20), samples, {.seed = 77},
+                              [&](int) { return Ray{Vec3(x, y, 0.05f), Vec3(0, 0, -1), 0.0f, 1.0f}; });
 }
 
 SceneDesc plane_scene() {

@@ -14,6 +14,7 @@
 #include "io/errors.h"
 #include "io/exr_writer.h"
 #include "io/job_file.h"
+#include "radiance_stats.h"
 #include "gltf_writer.h"
 #include "scene_builders.h"
 #include "statistics.h"
@@ -49,14 +50,8 @@ SceneDesc with_environment(SceneDesc desc, const Rgb& color, bool map, float rot
 }
 
 test::RunningStats estimate(const Scene& scene, const Integrator& integrator, const Ray& ray, int samples) {
-  IndependentSampler sampler(11);
-  RayCounters counters;
-  test::RunningStats stats;
-  for (int i = 0; i < samples; ++i) {
-    sampler.start_pixel_sample(1, 2, uint64_t(i));
-    stats.add(integrator.li(scene, ray, sampler, counters).radiance.y);
-  }
-  return stats;
+  return test::radiance_stats(scene, integrator, samples, {.seed = 11, .x = 1, .y = 2, .channel = 1},
+                              [&](int) { return ray; });
 }
 
 TEST(Environment, WhiteFurnaceHidesAWhiteSphere) {

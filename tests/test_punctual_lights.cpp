@@ -12,6 +12,7 @@
 #include "integrators/path_integrator.h"
 #include "io/errors.h"
 #include "io/gltf_loader.h"
+#include "radiance_stats.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
@@ -22,14 +23,8 @@ constexpr double kAlbedo = 0.5;
 
 // Radiance leaving the Lambertian plane z = 0 at (x, y) toward +z (direct light only).
 double plane_radiance(const Scene& scene, float x, float y) {
-  const PathIntegrator integrator(1, 1 << 20);
-  IndependentSampler sampler(3);
-  RayCounters counters;
-  test::RunningStats stats;
-  for (int i = 0; i < 64; ++i) {
-    sampler.start_pixel_sample(0, 0, uint64_t(i));
-    stats.add(integrator.li(scene, Ray{Vec3(x, y, 0.01f), Vec3(0, 0, -1)}, sampler, counters).radiance.x);
-  }
+  const test::RunningStats stats = test::radiance_stats(scene, PathIntegrator(1, 1 << 20), 64, {.seed = 3},
+                                                        [&](int) { return Ray{Vec3(x, y, 0.01f), Vec3(0, 0, -1)}; });
   EXPECT_LT(stats.standard_error(), 1e-6 * std::max(1e-3, stats.mean()));  // one light, no choice: exact
   return stats.mean();
 }

@@ -10,6 +10,7 @@
 #include "core/scene.h"
 #include "furnace_scene.h"
 #include "integrators/path_integrator.h"
+#include "radiance_stats.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
@@ -30,17 +31,8 @@ TEST(RadianceExtremes, FurnaceScalesWithEmissionFrom1e6Down1e8Up) {
 
 // Estimates of the radiance leaving a diffuse plane at (x, 0, 0) upward, with max depth `depth`.
 test::RunningStats plane_radiance(const Scene& scene, float x, int depth, int samples) {
-  const PathIntegrator integrator(depth, kNoRoulette);
-  IndependentSampler sampler(2024);
-  RayCounters counters;
-  test::RunningStats stats;
-  for (int i = 0; i < samples; ++i) {
-    sampler.start_pixel_sample(0, 0, uint64_t(i));
-    const RadianceSample L = integrator.li(scene, Ray{Vec3(x, 0.0f, 0.05f), Vec3(0, 0, -1)}, sampler, counters);
-    EXPECT_TRUE(std::isfinite(L.radiance.x)) << "sample " << i;
-    stats.add(L.radiance.x);
-  }
-  return stats;
+  return test::radiance_stats(scene, PathIntegrator(depth, kNoRoulette), samples, {.seed = 2024},
+                              [&](int) { return Ray{Vec3(x, 0.0f, 0.05f), Vec3(0, 0, -1)}; });
 }
 
 SceneDesc lit_plane(float radius, float le, const Vec3& centre) {

@@ -56,11 +56,11 @@ RayWorkload make_workload(const Scene& scene, const CameraDesc& cam_desc) {
       if (!scene.intersect(ray, hit)) continue;
       const Vec3 n = dot(hit.ng, ray.dir) < 0 ? hit.ng : -hit.ng;
       const Frame frame = Frame::from_normal(n);
-      w.bounce.push_back(spawn_ray(hit.p, hit.p_error, hit.ng, frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}))));
+      w.bounce.push_back(spawn_ray(hit, frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}))));
       if (scene.emitters().empty()) continue;
       const EmitterSample ls = scene.emitters().sample(hit.p, rng.next_float(), {rng.next_float(), rng.next_float()});
       if (!(ls.pdf > 0) || ls.delta || ls.infinite) continue;
-      w.shadow.push_back(spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n));
+      w.shadow.push_back(spawn_ray_between(hit, ls.p, ls.p_error, ls.n));
     }
   return w;
 }

@@ -158,6 +158,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
   std::vector<int> uses(desc_.meshes.size(), 0);
   for (const InstanceDesc& inst : desc_.instances) ++uses[inst.mesh];
   top_ = rtcNewScene(device);
+  rtcSetSceneFlags(top_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // skip_left_triangle
   auto attach_top = [&](RTCGeometry geom, TopGeometry ref) {
     rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(top_geometries_.size()));
     rtcReleaseGeometry(geom);
@@ -181,6 +182,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
     RTCScene& mesh_scene = mesh_scenes_[inst.mesh];
     if (!mesh_scene) {
       mesh_scene = rtcNewScene(device);
+      rtcSetSceneFlags(mesh_scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
       for (size_t p = 0; p < prims.size(); ++p) {
         if (prims[p].triangle_count() == 0) continue;
         RTCGeometry geom = triangle_geometry(device, prims[p]);
@@ -249,18 +251,52 @@ uint64_t Scene::triangle_count() const {
   return n;
 }
 
-bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
+namespace {
+
+// An intersection context that names the triangle a ray leaves (Embree passes the context to the
+// filter, so it must come first).
+struct LeavingContext {
   RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  TriangleId leaves;
+};
+
+// Embree's test sees a triangle through its float normal, which on a needle is off by up to
+// 2^-24 / sin(angle) (the cross product cancels): near the origin of a ray spawned from it, the
+// triangle's plane can appear on the wrong side of the offset origin, so the ray hits the face it
+// just left. No ray meets a plane twice, so such hits are dropped (Cycles does the same since 3.0).
+void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  const TriangleId& left = reinterpret_cast<const LeavingContext*>(args->context)->leaves;
+  if (RTCHitN_primID(args->hit, 1, 0) == left.primitive && RTCHitN_geomID(args->hit, 1, 0) == left.geometry &&
+      RTCHitN_instID(args->hit, 1, 0, 0) == left.instance)
+    args->valid[0] = 0;
+}
+
+LeavingContext leaving_context(const Ray& ray) {
+  LeavingContext c;
+  rtcInitIntersectContext(&c.context);
+  if (ray.leaves.valid()) {
+    c.context.filter = skip_left_triangle;
+    c.leaves = ray.leaves;
+  }
+  return c;
+}
+
+}  // namespace
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
+  LeavingContext c = leaving_context(ray);
+  if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   RTCRayHit rh = to_embree(ray);
-  rtcIntersect1(top_, &context, &rh);
+  rtcIntersect1(top_, &c.context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
+  hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     // An instanced mesh: Embree's geomID is the primitive within the mesh.
     reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), rh, hit);
   } else if (rh.hit.geomID == sphere_geom_id_) {
+    hit.triangle = {};
     reconstruct_sphere_hit(ray, rh, hit);
   } else {
     const TopGeometry& g = top_geometries_[rh.hit.geomID];
@@ -270,10 +306,9 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  LeavingContext c = leaving_context(ray);
   RTCRay r = to_embree(ray).ray;
-  rtcOccluded1(top_, &context, &r);
+  rtcOccluded1(top_, &c.context, &r);
   return r.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/ray.h"
+#include "core/surface_hit.h"
 #include "core/vec3.h"
 
 namespace prism {
@@ -34,26 +35,26 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& err, const Vec3& n, con
   return po;
 }
 
-// A ray leaving surface point p in direction dir.
-inline Ray spawn_ray(const Vec3& p, const Vec3& err, const Vec3& n, const Vec3& dir) {
-  return Ray{offset_ray_origin(p, err, n, dir), dir, 0.0f, std::numeric_limits<float>::infinity()};
+// A ray leaving a surface hit in direction dir.
+inline Ray spawn_ray(const SurfaceHit& from, const Vec3& dir) {
+  return Ray{offset_ray_origin(from.p, from.p_error, from.ng, dir), dir, 0.0f, std::numeric_limits<float>::infinity(),
+             from.triangle};
 }
 
-// A shadow ray from a surface point toward a light `distance` away along unit direction w (+inf
+// A shadow ray from a surface hit toward a light `distance` away along unit direction w (+inf
 // for lights at infinity), stopping just short of it.
-inline Ray spawn_ray_toward(const Vec3& p, const Vec3& err, const Vec3& n, const Vec3& w, float distance) {
-  Ray r = spawn_ray(p, err, n, w);
+inline Ray spawn_ray_toward(const SurfaceHit& from, const Vec3& w, float distance) {
+  Ray r = spawn_ray(from, w);
   r.t_max = std::isinf(distance) ? distance : distance * (1.0f - kShadowEpsilon);
   return r;
 }
 
-// A shadow ray between two surface points, each offset off its own surface toward the other;
-// the direction is unnormalised so t runs from 0 (from) to 1 (to).
-inline Ray spawn_ray_between(const Vec3& p_from, const Vec3& err_from, const Vec3& n_from, const Vec3& p_to,
-                             const Vec3& err_to, const Vec3& n_to) {
-  const Vec3 from = offset_ray_origin(p_from, err_from, n_from, p_to - p_from);
-  const Vec3 to = offset_ray_origin(p_to, err_to, n_to, from - p_to);
-  return Ray{from, to - from, 0.0f, 1.0f - kShadowEpsilon};
+// A shadow ray from a surface hit to a point on another surface, each offset off its own surface
+// toward the other; the direction is unnormalised so t runs from 0 (from) to 1 (to).
+inline Ray spawn_ray_between(const SurfaceHit& from, const Vec3& p_to, const Vec3& err_to, const Vec3& n_to) {
+  const Vec3 origin = offset_ray_origin(from.p, from.p_error, from.ng, p_to - from.p);
+  const Vec3 to = offset_ray_origin(p_to, err_to, n_to, origin - p_to);
+  return Ray{origin, to - origin, 0.0f, 1.0f - kShadowEpsilon, from.triangle};
 }
 
 }  // namespace prism

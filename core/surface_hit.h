@@ -1,6 +1,7 @@
 // SurfaceHit: what a ray learned at the first surface it hit, in world space.
 #pragma once
 
+#include "core/ray.h"
 #include "core/vec3.h"
 
 namespace prism {
@@ -16,6 +17,7 @@ struct SurfaceHit {
   float tangent_sign = 1;  // bitangent = sign x cross(ns, tangent) points up the texture image
   int material = -1;
   int emitter = -1;  // index into Emitters, or -1 when the surface does not emit
+  TriangleId triangle;  // the triangle hit; none for spheres, which a ray may meet twice
 };
 
 }  // namespace prism

@@ -34,8 +34,8 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
   const Rgb f = bsdf.eval(wi);
   if (is_black(incident) || is_black(f)) return {};
   ++counters.shadow;
-  const Ray shadow = ls.delta || ls.infinite ? spawn_ray_toward(hit.p, hit.p_error, hit.ng, wi, dist)
-                                             : spawn_ray_between(hit.p, hit.p_error, hit.ng, ls.p, ls.p_error, ls.n);
+  const Ray shadow = ls.delta || ls.infinite ? spawn_ray_toward(hit, wi, dist)
+                                             : spawn_ray_between(hit, ls.p, ls.p_error, ls.n);
   if (scene.occluded(shadow)) return {};
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();
@@ -124,7 +124,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       media.cross(material, hit.material, from_front);
       if (material.has_volume()) eta_scale *= bs->eta * bs->eta;
     }
-    ray = spawn_ray(hit.p, hit.p_error, hit.ng, bs->wi);
+    ray = spawn_ray(hit, bs->wi);
 
     // Russian roulette on the throughput without the radiance scaling of refraction, so paths
     // inside glass are not killed for having crossed into it; survivors are reweighted.

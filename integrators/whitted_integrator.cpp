@@ -68,7 +68,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       const float cos_i = dot(in.wi, ns);
       if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
       ++counters.shadow;
-      if (!scene.occluded(spawn_ray_toward(hit.p, hit.p_error, ng, in.wi, in.distance))) L += f * in.irradiance * cos_i;
+      if (!scene.occluded(spawn_ray_toward(hit, in.wi, in.distance))) L += f * in.irradiance * cos_i;
     }
   }
 
@@ -77,7 +77,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
     const Vec3 wr = reflect(wo, n_wo);
     if (dot(wr, ng) * dot(wo, ng) > 0) {
       ++counters.extension;
-      L += reflect_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wr), &hit.p, depth + 1, media, counters, nullptr);
+      L += reflect_weight * trace(scene, spawn_ray(hit, wr), &hit.p, depth + 1, media, counters, nullptr);
     }
   }
 
@@ -85,7 +85,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
   if (!is_black(transmit_weight)) {
     if (!volume) {
       ++counters.extension;
-      L += transmit_weight * trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, -wo), &hit.p, depth + 1, media, counters, nullptr);
+      L += transmit_weight * trace(scene, spawn_ray(hit, -wo), &hit.p, depth + 1, media, counters, nullptr);
     } else {
       const Vec3 n = from_front ? n_front : -n_front;  // on wo's side
       const float etap = from_front ? eta : 1.0f / eta;
@@ -95,7 +95,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
         inside.cross(material, hit.material, from_front);
         ++counters.extension;
         L += transmit_weight * (1.0f / (etap * etap)) *
-             trace(scene, spawn_ray(hit.p, hit.p_error, hit.ng, wt), &hit.p, depth + 1, inside, counters, nullptr);
+             trace(scene, spawn_ray(hit, wt), &hit.p, depth + 1, inside, counters, nullptr);
       }
     }
   }

@@ -100,6 +100,38 @@ TEST(SceneHits, InstancedMeshIsSharedAndTransformed) {
   EXPECT_FALSE(scene.intersect(Ray{Vec3(13.5f, 5, 2), Vec3(0, -1, 0)}, hit));
 }
 
+// A ray that names the triangle it leaves never hits it, and still hits everything else: the
+// same quad placed twice (instanced) and a quad baked into world space, each crossed by a ray
+// starting just above its plane, as if the offset had gone the wrong way, and passing on down.
+TEST(SceneHits, RaysNeverHitTheTriangleTheyLeave) {
+  SceneDesc desc;
+  const int m = test::add_material(desc, Rgb(0.5f));
+  const int shared = test::add_quad(desc, Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), m);
+  InstanceDesc above;
+  above.mesh = shared;
+  above.object_to_world = Transform::translate(Vec3(0, 0, 1));
+  desc.instances.push_back(above);
+  test::add_quad(desc, Vec3(-1, -1, 2), Vec3(2, 0, 0), Vec3(0, 2, 0), m);  // baked: used once
+  const Scene scene(std::move(desc));
+  for (float z : {0.0f, 1.0f, 2.0f}) {
+    SurfaceHit on;
+    ASSERT_TRUE(scene.intersect(Ray{Vec3(0.3f, 0.2f, z + 0.5f), Vec3(0, 0, -1)}, on));
+    ASSERT_TRUE(on.triangle.valid());
+    EXPECT_EQ(on.triangle.instance == TriangleId::kNone, z == 2.0f) << z;  // only the shared mesh is instanced
+    Ray down(on.p + Vec3(0, 0, 1e-3f), Vec3(0, 0, -1), 0.0f, INFINITY, on.triangle);
+    SurfaceHit next;
+    const bool hits_below = scene.intersect(down, next);
+    EXPECT_EQ(hits_below, z > 0.0f) << z;
+    if (hits_below) {
+      EXPECT_FLOAT_EQ(next.p.z, z - 1.0f);
+    }
+    EXPECT_EQ(scene.occluded(down), z > 0.0f) << z;
+    down.leaves = {};
+    ASSERT_TRUE(scene.intersect(down, next)) << z;  // without the name, its own plane is met
+    EXPECT_FLOAT_EQ(next.p.z, z);
+  }
+}
+
 TEST(SceneHits, MirroredInstanceKeepsFrontFaceByDeterminant) {
   // glTF 2.0 §3.7.4: a negative determinant makes clockwise faces front-facing, so the
   // geometric normal follows the mirrored surface rather than the flipped winding.
@@ -182,11 +214,11 @@ TEST(SpawnedRays, NeverReHitTheirOwnSurface) {
         const Frame f = Frame::from_normal(out_dir);
         w = f.to_world(w);
         SurfaceHit again;
-        const Ray leave = spawn_ray(hit.p, hit.p_error, hit.ng, w);
+        const Ray leave = spawn_ray(hit, w);
         if (scene.intersect(leave, again) && again.t < 1e-3f * scale) ++failures;
         if (sphere && dot(out_dir, hit.ng) > 0) {
           // Into the sphere: must reach the far side, not the entry point.
-          const Ray into = spawn_ray(hit.p, hit.p_error, hit.ng, -w);
+          const Ray into = spawn_ray(hit, -w);
           ASSERT_TRUE(scene.intersect(into, again)) << "scale " << scale;
           if (again.t < 1e-3f * scale) ++failures;
         }

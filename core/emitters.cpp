@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/constants.h"
+#include "core/face_normal.h"
 #include "core/frame.h"
 #include "core/punctual_light.h"
 #include "core/sampling.h"
@@ -69,9 +70,9 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
         e.p1 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]);
         e.p2 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]]);
         if (flip < 0) std::swap(e.p1, e.p2);  // keep the front face counter-clockwise in world space
-        const Vec3 n = cross(e.p1 - e.p0, e.p2 - e.p0);
-        e.area = 0.5f * length(n);
-        e.normal = e.area > 0 ? n / (2.0f * e.area) : Vec3(0.0f);
+        const FaceNormal face = face_normal(e.p0, e.p1, e.p2);
+        e.area = face.area;
+        e.normal = face.normal;
         e.textured = mat.emissive_texture.present();
         emitters_.push_back(e);
         power.push_back(double(radiance) * e.area * kPi);
@@ -150,6 +151,7 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
 float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const {
   if (index < 0 || index >= static_cast<int>(emitters_.size()) || pick_.size() == 0) return 0;
   const Emitter& e = emitters_[index];
+  if (!(e.area > 0)) return 0;  // collinear corners: never sampled (1 / 0 x a pick of 0 is NaN)
   float pdf;
   if (e.sphere) {
     pdf = sphere_pdf(e, ref, p, n);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/embree_device.h"
+#include "core/face_normal.h"
 #include "core/hash.h"
 #include "core/render_origin.h"
 #include "core/spawn.h"
@@ -327,11 +328,9 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
   hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
 
   // glTF 2.0 §3.7.4: a negative determinant makes the front face clockwise.
-  Vec3 ng = cross(p1 - p0, p2 - p0);
-  if (xf.flips_handedness()) ng = -ng;
-  const float len = length(ng);
-  if (len > 0 && std::isfinite(len)) {
-    hit.ng = ng / len;
+  const Vec3 ng = face_normal(p0, p1, p2).normal * (xf.flips_handedness() ? -1.0f : 1.0f);
+  if (ng != Vec3(0.0f)) {
+    hit.ng = ng;
   } else {
     // Degenerate in float after the transform: face the incoming ray.
     hit.ng = normalize(-Vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));

@@ -15,23 +15,18 @@
 #include "furnace_scene.h"
 #include "integrators/path_integrator.h"
 #include "integrators/whitted_integrator.h"
+#include "lit_plane.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
 namespace prism {
 namespace {
 
-constexpr int kNoRoulette = 1 << 20;
-const std::vector<float> kScales = {1e-4f, 1e-2f, 1.0f, 1e2f, 1e4f, 1e6f};
-const Vec3 kFar(1e5f, -1e5f, 1e5f);  // the translated cell: float spacing there is 2^-7
-
-// Every scale, then scale 1 moved far from the origin: {scale, offset}.
-std::vector<std::pair<float, Vec3>> placements() {
-  std::vector<std::pair<float, Vec3>> p;
-  for (float s : kScales) p.push_back({s, Vec3(0.0f)});
-  p.push_back({1.0f, kFar});
-  return p;
-}
+using test::kNoRoulette;
+using test::render_view;
+using test::kFar;
+using test::kScales;
+using test::placements;
 
 void expect_furnace_at(float s, const Vec3& offset) {
   SCOPED_TRACE("scale " + std::to_string(s) + " offset " + std::to_string(offset.x));
@@ -47,49 +42,15 @@ TEST(ScaleExtremes, FurnaceRadianceIsTheSameAtEveryScale) {
 // of the face across the edge.
 TEST(ScaleExtremes, FurnaceRadianceHoldsFarFromTheOrigin) { expect_furnace_at(1.0f, kFar); }
 
-// Renders `desc` with the path tracer at max depth `depth` from a camera at eye looking at target.
-Film render_view(SceneDesc desc, const Vec3& eye, const Vec3& target, int depth, int size = 32, int spp = 4) {
-  const Scene scene(std::move(desc));
-  CameraDesc cam;
-  cam.camera_to_world = Transform::look_at(eye, target, Vec3(0, 0, 1));
-  cam.yfov = 0.5f;
-  RenderSettings settings;
-  settings.width = settings.height = size;
-  settings.spp = spp;
-  settings.max_depth = depth;
-  Film film(size, size);
-  const RenderStats stats =
-      render(scene, Camera(cam, size, size), PathIntegrator(depth, kNoRoulette), settings, film);
-  EXPECT_EQ(stats.nonfinite_samples, 0u);
-  return film;
-}
-
-// A plane lit by a sun 60 degrees from its normal and seen at a grazing 75 degrees: direct light
-// is deterministic (a delta light, no other surface), so every pixel must be exactly
-// albedo / pi x E cos 60; a self-shadowed pixel (acne) would be black.
+// A plane lit by a sun 60 degrees from its normal and seen at a grazing 75 degrees (lit_plane.h):
+// direct light from a delta light alone, so every pixel must be exactly albedo / pi x E cos 60; a
+// self-shadowed pixel (acne) would be black.
 TEST(ScaleExtremes, LitPlaneHasNoAcne) {
-  const float albedo = 0.5f, lux = 3.0f;
-  const double expected = albedo / kPi * lux * 0.5;
+  const double expected = test::sunlit_radiance(0.5);
   for (const auto& [s, offset] : placements()) {
-    SceneDesc desc;
-    const int m = test::add_material(desc, Rgb(albedo));
-    test::add_quad(desc, Vec3(-100, -100, 0) * s + offset, Vec3(200, 0, 0) * s, Vec3(0, 200, 0) * s, m);
-    PunctualLightDesc sun;
-    sun.type = LightType::Directional;
-    sun.direction = normalize(Vec3(std::sin(kPi / 3), 0.0f, -std::cos(kPi / 3)));
-    sun.intensity = Rgb(lux);
-    desc.lights.push_back(sun);
-    const Vec3 eye = Vec3(0.0f, -std::sin(1.309f), std::cos(1.309f)) * (4.0f * s) + offset;  // 75 degrees off the normal
-    const Film film = render_view(std::move(desc), eye, offset, 1);
-    const std::vector<float> rgba = film.resolve_rgba();
-    int covered = 0, wrong = 0;
-    for (size_t i = 0; i < rgba.size(); i += 4) {
-      if (rgba[i + 3] < 1.0f) continue;
-      ++covered;
-      wrong += std::abs(rgba[i] - expected) > 1e-5 * expected;
-    }
-    EXPECT_EQ(covered, film.width() * film.height()) << "scale " << s;
-    EXPECT_EQ(wrong, 0) << "scale " << s << " offset " << offset.x;
+    const test::PixelCheck c = test::check_pixels(test::view_lit_plane(test::lit_plane(s, offset), s, offset), expected, expected);
+    EXPECT_EQ(c.covered, 32 * 32) << "scale " << s;
+    EXPECT_EQ(c.outside, 0) << "scale " << s << " offset " << offset.x;
   }
 }
 

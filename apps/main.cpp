@@ -72,6 +72,10 @@ int main(int argc, char** argv) {
   cmd->add_option("--env-rotation", render.env_rotation,
                   "Rotation of the environment about +Y in degrees, counter-clockwise seen from above (default 0)");
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
+  cmd->add_option("--pixel-type", render.pixel_type,
+                  "How the EXR stores R, G, B, A: float (default; 32-bit) or half (16-bit: half the size, 11 bits of "
+                  "precision; values above 65504 are clamped to it, with a warning)")
+      ->check(CLI::IsMember({"float", "half"}));
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 
   CompareOptions compare;

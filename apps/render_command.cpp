@@ -67,11 +67,19 @@ int render(const RenderOptions& o) {
   }
   std::vector<ExrChannel> extra;
   if (stats.spp_min != stats.spp_max) extra.push_back({"spp", film.resolve_counts()});
-  const int replaced = write_exr(output, settings.width, settings.height, rgba, attributes, extra);
+  const std::string pixel_type = o.pixel_type ? *o.pixel_type : (p.job && p.job->pixel_type ? *p.job->pixel_type : "float");
+  const ExrPixelType beauty = pixel_type == "half" ? ExrPixelType::Half : ExrPixelType::Float;
+  const ExrWriteReport written = write_exr(output, settings.width, settings.height, rgba, attributes, extra, beauty);
   if (preview) write_png_preview(*preview, settings.width, settings.height, rgba);
 
   if (!o.quiet) {
-    if (replaced > 0) fmt::print(stderr, "prism: warning: {} pixel values overflowed float and were clamped\n", replaced);
+    if (written.nonfinite > 0)
+      fmt::print(stderr, "prism: warning: {}: {} pixel values overflowed float and were clamped\n", output, written.nonfinite);
+    if (written.clamped > 0)
+      fmt::print(stderr,
+                 "prism: warning: {}: {} pixel values above 65504, the largest half, were clamped to it; "
+                 "write float (--pixel-type float) to keep them\n",
+                 output, written.clamped);
     const double secs = stats.seconds > 0 ? stats.seconds : 1e-9;
     fmt::print("{}x{}, {} spp, {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s (camera {}, extension {}, shadow {}), "
                "BVH {:.3f} s, {} non-finite samples -> {}{}\n",

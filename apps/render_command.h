@@ -13,6 +13,7 @@ namespace prism {
 struct RenderOptions {
   std::string scene;
   std::optional<std::string> output, preview;
+  std::optional<std::string> pixel_type;  // "float" or "half" for the beauty channels
   std::optional<std::string> resolution;  // "WxH", parsed into settings
   std::optional<std::string> time;        // "30s", "2m", parsed into settings
   RenderSettingsOverride settings;

@@ -27,7 +27,7 @@ class JobParser {
     JobFile job;
     job.path = file_;
     expect_object(root, "$");
-    warn_unknown(root, "$", {"scene", "output", "preview", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
+    warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
                              "integrator", "sampler", "time", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
@@ -38,6 +38,10 @@ class JobParser {
     if (root.contains("scene")) job.scene = relative(string_at(root["scene"], "$.scene"));
     if (root.contains("output")) job.output = relative(string_at(root["output"], "$.output"));
     if (root.contains("preview")) job.preview = relative(string_at(root["preview"], "$.preview"));
+    if (root.contains("pixel_type")) {
+      job.pixel_type = string_at(root["pixel_type"], "$.pixel_type");
+      if (*job.pixel_type != "float" && *job.pixel_type != "half") fail("$.pixel_type", "expected \"float\" or \"half\"");
+    }
     if (root.contains("resolution")) {
       const json& r = root["resolution"];
       if (!r.is_array() || r.size() != 2) fail("$.resolution", "expected [width, height]");

@@ -59,6 +59,7 @@ struct JobFile {
   std::string path;
   std::optional<std::string> scene;  // glTF path, resolved against the job file's folder
   std::optional<std::string> output, preview;
+  std::optional<std::string> pixel_type;  // "float" or "half": the beauty channels' type
   RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;
   std::vector<JobSphere> spheres;

@@ -37,6 +37,24 @@ if(NOT EXISTS "${WORK_DIR}/job.exr" OR NOT last_out MATCHES "8x4, 1 spp")
   message(FATAL_ERROR "job file render failed: ${last_out}")
 endif()
 
+# Half output: a 1e6 emitter is clamped to 65504 (the largest half) with a warning naming the file,
+# from the flag and from the job file; an unknown pixel type is a usage error.
+file(WRITE "${WORK_DIR}/bright.json" "{\"scene\": \"${box}\", \"spp\": 1, \"resolution\": [16, 16], \"pixel_type\": \"half\",
+  \"output\": \"bright_job.exr\", \"spheres\": [{\"center\": [0.0, 0.0, 0.0], \"radius\": 0.3,
+  \"material\": {\"emissive\": [1, 1, 1], \"emissive_strength\": 1e6}}]}")
+run(0 "${PRISM}" render "${WORK_DIR}/bright.json")
+expect_match("${last_err}" "bright_job.exr: [0-9]+ pixel values above 65504, the largest half, were clamped" "no half clamp warning (job)")
+run(0 "${PRISM}" render "${WORK_DIR}/bright.json" --pixel-type half -o "${WORK_DIR}/bright.exr")
+expect_match("${last_err}" "bright.exr: [0-9]+ pixel values above 65504" "no half clamp warning (flag)")
+run(0 "${PRISM}" render "${WORK_DIR}/bright.json" --pixel-type float -o "${WORK_DIR}/bright_float.exr")
+if(last_err MATCHES "65504")
+  message(FATAL_ERROR "float output warned about half: ${last_err}")
+endif()
+run(2 "${PRISM}" render "${box}" --pixel-type double -o "${WORK_DIR}/x.exr")
+file(WRITE "${WORK_DIR}/bad_type.json" "{\"scene\": \"${box}\", \"pixel_type\": \"double\"}")
+run(3 "${PRISM}" render "${WORK_DIR}/bad_type.json")
+expect_match("${last_err}" "pixel_type" "unclear pixel_type message")
+
 # --quiet prints nothing.
 run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/quiet.exr" --spp 1 --res 8x8 --quiet)
 if(NOT last_out STREQUAL "" OR NOT last_err STREQUAL "")

@@ -26,7 +26,9 @@ size_t files_in(const std::string& dir) {
 TEST(ExrWriter, RoundTripsFloatRgbaAndAttributes) {
   const std::string dir = test::make_temp_dir("exr");
   std::vector<float> px = {0.25f, 1e6f, 3e-8f, 1.0f, 0.0f, 2.5f, 7.0f, 0.5f};
-  EXPECT_EQ(write_exr(dir + "/a.exr", 2, 1, px, {{"prism/spp", 64}, {"prism/integrator", std::string("path")}}), 0);
+  const ExrWriteReport report = write_exr(dir + "/a.exr", 2, 1, px, {{"prism/spp", 64}, {"prism/integrator", std::string("path")}});
+  EXPECT_EQ(report.nonfinite, 0);
+  EXPECT_EQ(report.clamped, 0);  // 1e6 is nothing to a float
   EXPECT_EQ(files_in(dir), 1u);  // no temporary file left behind
   const ImageDesc img = read_image_file(dir + "/a.exr", ColorSpace::Linear);
   ASSERT_EQ(img.width, 2);
@@ -42,7 +44,7 @@ TEST(ExrWriter, NonFiniteValuesNeverReachTheFile) {
   const std::string dir = test::make_temp_dir("exr");
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<float> px = {std::nanf(""), inf, -inf, 1.0f};
-  EXPECT_EQ(write_exr(dir + "/b.exr", 1, 1, px, {}), 3);
+  EXPECT_EQ(write_exr(dir + "/b.exr", 1, 1, px, {}).nonfinite, 3);
   const ImageDesc img = read_image_file(dir + "/b.exr", ColorSpace::Linear);
   for (float v : img.texels) EXPECT_TRUE(std::isfinite(v));
   EXPECT_EQ(img.texels[0], 0.0f);

@@ -1,10 +1,19 @@
 // Accumulation at the extremes: 2^20 samples into one pixel keep the exact mean, whatever the
-// order and dynamic range of the samples (the film sums in double).
+// order and dynamic range of the samples (the film sums in double); and what reaches a half-float
+// file stays finite.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "core/film.h"
+#include "gltf_writer.h"
+#include "io/exr_writer.h"
+#include "io/image_decode.h"
 
 namespace prism {
 namespace {
@@ -49,6 +58,36 @@ TEST(AccumulationExtremes, MixedMagnitudesAverageExactly) {
   for (uint64_t i = 0; i < kSamples; ++i) film.add_sample(0, 0, Rgb(i % 2 ? 1e8f : 1e-6f), 1.0f);
   const double exact = (double(1e8f) + double(1e-6f)) / 2.0;
   EXPECT_EQ(pixel_red(film), float(exact));
+}
+
+// A half holds at most 65504; OpenEXR's conversion turns anything larger into Inf. Half output
+// clamps finite values beyond it to +-65504 and counts them (the renderer warns), and writes
+// non-finite ones as 0 (NaN) or +-65504 (Inf); values within range keep half precision (2^-11).
+TEST(AccumulationExtremes, HalfOutputClampsTo65504AndNeverWritesInf) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const std::vector<float> values = {0.5f,  1e-3f,   65504.0f, 65519.0f, 65520.0f, 1e5f, 1e30f,
+                                     -1e6f, -65505.0f, inf,      -inf,     std::nanf(""), 3.0e4f, 1.0f};
+  const std::string path = test::make_temp_dir("half") + "/half.exr";
+  const ExrWriteReport report = write_exr(path, 1, int(values.size() / 4) + 1, [&] {
+    std::vector<float> rgba = values;
+    rgba.resize((values.size() / 4 + 1) * 4, 0.25f);
+    return rgba;
+  }(), {}, {}, ExrPixelType::Half);
+  EXPECT_EQ(report.clamped, 6);    // 65519, 65520, 1e5, 1e30, -1e6, -65505
+  EXPECT_EQ(report.nonfinite, 3);  // inf, -inf, NaN
+  auto in = OIIO::ImageInput::open(path);
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);
+  in.reset();
+  const ImageDesc img = read_image_file(path, ColorSpace::Linear);
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float v = values[i], got = img.texels[i];
+    ASSERT_TRUE(std::isfinite(got)) << i;
+    EXPECT_LE(std::abs(got), kHalfMax) << i;
+    if (std::isnan(v)) EXPECT_EQ(got, 0.0f);
+    else if (std::abs(v) > kHalfMax) EXPECT_EQ(got, std::copysign(kHalfMax, v)) << i;
+    else EXPECT_NEAR(got, v, std::abs(v) * 0x1p-11f) << i;
+  }
 }
 
 }  // namespace

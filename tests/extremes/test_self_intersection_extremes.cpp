@@ -1,6 +1,6 @@
 // Self-intersection at the extremes: rays spawned from hits on tetrahedra of every shape (down to
-// 1e-4 slivers), placed with hit coordinates log-uniform over 1e-6..1e6 and turned at random,
-// never hit their own surface again and always reach the far side from inside.
+// 1e-4 slivers) and on spheres, placed with hit coordinates log-uniform over 1e-6..1e6 and turned
+// at random, never hit their own surface again and always reach the far side from inside.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -152,6 +152,73 @@ TEST(SelfIntersectionExtremes, SpawnedRaysNeverReHitTheirSurfaceAndAlwaysCrossCl
 TEST(SelfIntersectionExtremes, InwardRaysNeverMeetTheirOwnFace) {
   const SpawnCounts c = spawn_from_tetrahedra();
   EXPECT_EQ(c.same_face, 0) << c.first_failure;
+}
+
+// Where a ray from inside a sphere leaves it, in long double: the far root of |o + t d - c| = r.
+Vec3 exit_point(const Vec3& c, float r, const Ray& ray) {
+  long double oc[3], b = 0, cc = 0, dd = 0;
+  for (int i = 0; i < 3; ++i) {
+    oc[i] = (long double)ray.origin[i] - c[i];
+    b += oc[i] * ray.dir[i];
+    cc += oc[i] * oc[i];
+    dd += (long double)ray.dir[i] * ray.dir[i];
+  }
+  const long double t = (-b + std::sqrt(b * b - dd * (cc - (long double)r * r))) / dd;
+  return Vec3(float(ray.origin.x + t * ray.dir.x), float(ray.origin.y + t * ray.dir.y), float(ray.origin.z + t * ray.dir.z));
+}
+
+// Spheres of radius 10^-3..10^-0.5 of their distance from the origin, that distance log-uniform
+// in 1e-6..1e6 (a speck at -c keeps each where it is): a ray spawned outward never meets its
+// sphere again; one spawned inward always meets it again where it really leaves it (the exact far
+// root from its offset origin, to 4 offsets), unless the offset put its origin past the surface (a
+// grazing chord shorter than the offset; none here).
+TEST(SelfIntersectionExtremes, SpheresAreNeverMetAgainOutwardAndAlwaysCrossedInward) {
+  Pcg32 rng(2026, 12);
+  int rays = 0, rehit = 0, wrong_exit = 0, origin_outside = 0;
+  std::string first_failure;
+  for (int trial = 0; trial < 400; ++trial) {
+    const float distance = log_uniform(rng, -6, 6);
+    const float r = distance * log_uniform(rng, -3, -0.5f);
+    const Vec3 c = sample_uniform_sphere({rng.next_float(), rng.next_float()}) * distance;
+    SceneDesc desc;
+    const int m = test::add_material(desc, Rgb(0.5f));
+    test::add_sphere(desc, c, r, m);
+    test::add_sphere(desc, -c, 1e-3f * r, m);
+    const Scene scene(std::move(desc));
+    ASSERT_EQ(scene.origin(), Vec3(0.0f));
+    auto on_sphere = [&](const SurfaceHit& h) { return length(h.p - c) < 1.5f * r; };
+    for (int i = 0; i < 40; ++i) {
+      const Vec3 target = c + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * (r * rng.next_float());
+      const Vec3 from = target + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * (4.0f * r);
+      SurfaceHit hit;
+      if (!scene.intersect(Ray{from, normalize(target - from)}, hit) || !on_sphere(hit)) continue;
+      ++rays;
+      const Vec3 dir = Frame::from_normal(hit.ng).to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}));
+      auto fail = [&](const std::string& what) {
+        if (first_failure.empty())
+          first_failure = what + ": distance " + std::to_string(distance) + " radius " + std::to_string(r);
+      };
+      SurfaceHit again;
+      if (scene.intersect(spawn_ray(hit, dir), again) && on_sphere(again)) {
+        ++rehit;
+        fail("an outward ray met its sphere again");
+      }
+      const Ray inward = spawn_ray(hit, -dir);
+      if (length(inward.origin - c) >= r) {
+        ++origin_outside;
+        continue;
+      }
+      if (!scene.intersect(inward, again) || !on_sphere(again) ||
+          length(again.p - exit_point(c, r, inward)) > 4 * length(hit.p_error)) {
+        ++wrong_exit;
+        fail("an inward ray did not leave where it should");
+      }
+    }
+  }
+  std::printf("%d rays, %d inward origins past the surface\n", rays, origin_outside);
+  EXPECT_GT(rays, 12000);
+  EXPECT_EQ(rehit, 0) << first_failure;
+  EXPECT_EQ(wrong_exit, 0) << first_failure;
 }
 
 }  // namespace

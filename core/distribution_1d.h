@@ -29,7 +29,8 @@ class Distribution1D {
 
   size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
   double total() const { return total_; }
-  float pmf(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
+  // 0 past the end, and for every item of an empty distribution (all weights zero).
+  float pmf(size_t i) const { return i < size() ? static_cast<float>(cdf_[i + 1] - cdf_[i]) : 0.0f; }
 
   // Picks an item for u in [0,1); returns its index and rescales u to [0,1) within the
   // item's interval so one sample dimension can be reused.

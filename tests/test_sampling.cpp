@@ -169,6 +169,7 @@ TEST(Distribution1D, SamplesInProportionToWeights) {
 TEST(Distribution1D, AllZeroIsEmpty) {
   Distribution1D d(std::vector<double>{0, 0, -1, std::nan("")});
   EXPECT_EQ(d.size(), 0u);
+  for (size_t i = 0; i < 5; ++i) EXPECT_EQ(d.pmf(i), 0.0f);  // no item has any probability
 }
 
 TEST(Frame, IsOrthonormal) {

@@ -264,7 +264,7 @@ struct LeavingContext {
 // Embree's test sees a triangle through its float normal, which on a needle is off by up to
 // 2^-24 / sin(angle) (the cross product cancels): near the origin of a ray spawned from it, the
 // triangle's plane can appear on the wrong side of the offset origin, so the ray hits the face it
-// just left. No ray meets a plane twice, so such hits are dropped (Cycles does the same since 3.0).
+// just left. No ray meets a plane twice, so such hits are dropped (Cycles skips its own primitive too).
 void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;
   const TriangleId& left = reinterpret_cast<const LeavingContext*>(args->context)->leaves;

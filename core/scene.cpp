@@ -292,12 +292,10 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
   rtcIntersect1(top_, &c.context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
-  hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     // An instanced mesh: Embree's geomID is the primitive within the mesh.
     reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), rh, hit);
   } else if (rh.hit.geomID == sphere_geom_id_) {
-    hit.triangle = {};
     reconstruct_sphere_hit(ray, rh, hit);
   } else {
     const TopGeometry& g = top_geometries_[rh.hit.geomID];
@@ -371,6 +369,7 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
     }
   }
   hit.material = prim.material;
+  hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
   const int base = emitters_.triangle_base(instance, primitive);
   hit.emitter = base >= 0 ? base + static_cast<int>(rh.hit.primID) : -1;
 }
@@ -407,6 +406,7 @@ void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceH
   hit.tangent = length_squared(t) > 0 ? normalize(t) : Vec3(1, 0, 0);
   hit.tangent_sign = 1.0f;
   hit.material = s.material;
+  hit.triangle = {};  // a ray may meet a sphere twice
   hit.emitter = emitters_.sphere_emitter(static_cast<int>(rh.hit.primID));
 }
 

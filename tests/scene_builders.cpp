@@ -23,6 +23,8 @@ void append_quad(PrimitiveDesc& prim, const Vec3& c, const Vec3& u, const Vec3& 
   prim.indices.insert(prim.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
 
+}  // namespace
+
 int add_mesh(SceneDesc& scene, PrimitiveDesc prim, const Transform& xf) {
   MeshDesc mesh;
   mesh.primitives.push_back(std::move(prim));
@@ -33,8 +35,6 @@ int add_mesh(SceneDesc& scene, PrimitiveDesc prim, const Transform& xf) {
   scene.instances.push_back(inst);
   return inst.mesh;
 }
-
-}  // namespace
 
 int add_quad(SceneDesc& scene, const Vec3& c, const Vec3& u, const Vec3& v, int material, const Transform& xf) {
   PrimitiveDesc prim;

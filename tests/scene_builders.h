@@ -8,6 +8,10 @@ namespace prism::test {
 // Adds a pure Lambertian material (non-metal with IOR 1, so no specular layer); returns its index.
 int add_material(SceneDesc& scene, const Rgb& albedo, const Rgb& emission = Rgb(0.0f), bool double_sided = false);
 
+// Adds one primitive as a mesh of its own, placed once by `xf` (the newest instance); returns the
+// mesh index.
+int add_mesh(SceneDesc& scene, PrimitiveDesc prim, const Transform& xf = Transform());
+
 // Adds a quad (two triangles) with corners c, c+u, c+u+v, c+v as a one-primitive mesh placed by
 // `xf`; its front face is along cross(u, v). Returns the mesh index.
 int add_quad(SceneDesc& scene, const Vec3& c, const Vec3& u, const Vec3& v, int material,

@@ -107,10 +107,7 @@ TEST(SceneHits, RaysNeverHitTheTriangleTheyLeave) {
   SceneDesc desc;
   const int m = test::add_material(desc, Rgb(0.5f));
   const int shared = test::add_quad(desc, Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), m);
-  InstanceDesc above;
-  above.mesh = shared;
-  above.object_to_world = Transform::translate(Vec3(0, 0, 1));
-  desc.instances.push_back(above);
+  desc.instances.push_back({"above", shared, Transform::translate(Vec3(0, 0, 1))});
   test::add_quad(desc, Vec3(-1, -1, 2), Vec3(2, 0, 0), Vec3(0, 2, 0), m);  // baked: used once
   const Scene scene(std::move(desc));
   for (float z : {0.0f, 1.0f, 2.0f}) {

@@ -33,9 +33,7 @@ int add_coarse_smooth_sphere(SceneDesc& desc, int material, int rings = 6, int s
       const uint32_t a = r * (segments + 1) + s, b = a + segments + 1;
       p.indices.insert(p.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
     }
-  desc.meshes.push_back({"sphere", {p}});
-  desc.instances.push_back({"sphere", static_cast<int>(desc.meshes.size()) - 1, Transform()});
-  return static_cast<int>(desc.meshes.size()) - 1;
+  return test::add_mesh(desc, std::move(p));
 }
 
 TEST(ShadingNormals, NoBlackRimsOnCoarseSmoothMeshes) {

@@ -26,17 +26,6 @@ namespace {
 
 using test::kNoRoulette;
 
-// Places one primitive in `desc` as a mesh used once; returns the instance index.
-int add_primitive(SceneDesc& desc, PrimitiveDesc prim) {
-  MeshDesc mesh;
-  mesh.primitives.push_back(std::move(prim));
-  desc.meshes.push_back(std::move(mesh));
-  InstanceDesc inst;
-  inst.mesh = static_cast<int>(desc.meshes.size()) - 1;
-  desc.instances.push_back(inst);
-  return static_cast<int>(desc.instances.size()) - 1;
-}
-
 Vec3 on_grid(Pcg32& rng, float extent) {  // a point of the 1/8 grid in [-extent, extent]^3
   auto c = [&] { return std::round((rng.next_float() * 2 - 1) * extent * 8) / 8; };
   return Vec3(c(), c(), c());
@@ -75,7 +64,8 @@ TEST(GeometryExtremes, DegenerateTrianglesAreNeverHitNorLights) {
   SceneDesc desc;
   const int glow = test::add_material(desc, Rgb(0.5f), Rgb(1e4f));
   std::vector<Vec3> aims;
-  const int degenerate = add_primitive(desc, degenerate_triangles(rng, 500, 2.0f, glow, aims));
+  test::add_mesh(desc, degenerate_triangles(rng, 500, 2.0f, glow, aims));
+  const int degenerate = static_cast<int>(desc.instances.size()) - 1;
   test::add_quad(desc, Vec3(-1, -1, 40), Vec3(2, 0, 0), Vec3(0, 2, 0), glow);  // one real light, far off
   const Scene scene(std::move(desc));
   ASSERT_EQ(scene.origin(), Vec3(0.0f));  // a move would round the corners off their line
@@ -109,8 +99,8 @@ TEST(GeometryExtremes, DegenerateTrianglesLeaveALitPlaneExact) {
   PrimitiveDesc in_plane = degenerate_triangles(rng, 250, 2.0f, glow, aims), above = in_plane;
   for (Vec3& p : in_plane.positions) p.z = 0;     // still collinear: x and y are
   for (Vec3& p : above.positions) p.z += 3.5f;    // exact on the 1/8 grid
-  add_primitive(desc, std::move(in_plane));
-  add_primitive(desc, std::move(above));
+  test::add_mesh(desc, std::move(in_plane));
+  test::add_mesh(desc, std::move(above));
   const double expected = test::sunlit_radiance(0.5);
   const test::PixelCheck c = test::check_pixels(test::view_lit_plane(std::move(desc), 1.0f, Vec3(0.0f)), expected, expected);
   EXPECT_EQ(c.covered, 32 * 32);
@@ -136,7 +126,7 @@ TEST(GeometryExtremes, SliverTrianglesTakeTheNormalOfTheirFloatCorners) {
     prim.material = m;
     prim.positions.assign(tri.begin(), tri.end());
     prim.indices = {0, 1, 2};
-    add_primitive(desc, std::move(prim));
+    test::add_mesh(desc, std::move(prim));
     for (float c : {-5.0f, 5.0f}) test::add_sphere(desc, Vec3(c), 1e-3f, m);  // keep the origin: corners unmoved
     const Scene scene(std::move(desc));
     ASSERT_EQ(scene.origin(), Vec3(0.0f));
@@ -189,7 +179,7 @@ TEST(GeometryExtremes, DuplicateVerticesRenderLikeTheWeldedMesh) {
   for (int layout = 0; layout < 3; ++layout) {
     SceneDesc desc;
     const int wall = test::add_material(desc, Rgb(0.7f, 0.5f, 0.3f));
-    add_primitive(desc, room_three_ways(wall)[size_t(layout)]);
+    test::add_mesh(desc, room_three_ways(wall)[size_t(layout)]);
     PunctualLightDesc lamp;
     lamp.position = Vec3(0.3f, -0.2f, 0.6f);
     lamp.intensity = Rgb(5.0f);

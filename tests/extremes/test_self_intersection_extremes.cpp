@@ -82,11 +82,7 @@ SpawnCounts spawn_from_tetrahedra() {
       if (dot(cross(tet[b] - tet[a], tet[cc] - tet[a]), tet[a] - centroid) < 0) std::swap(b, cc);  // outward
       prim.indices.insert(prim.indices.end(), {a, b, cc});
     }
-    MeshDesc mesh;
-    mesh.primitives.push_back(std::move(prim));
-    desc.meshes.push_back(std::move(mesh));
-    desc.instances.push_back(InstanceDesc{});
-    desc.instances.back().mesh = 0;
+    test::add_mesh(desc, std::move(prim));
     test::add_sphere(desc, -c, 1e-3f * distance, m);
     const Scene scene(std::move(desc));
     EXPECT_EQ(scene.origin(), Vec3(0.0f));

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
       "Run 'prism COMMAND --help' for the options of a command.");
 
   RenderOptions render;
-  CLI::App* cmd = app.add_subcommand("render", "Render a scene to an OpenEXR image (float R,G,B,A).");
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene to an OpenEXR image (R,G,B,A and the AOVs asked for).");
   cmd->add_option("SCENE", render.scene,
                   "Scene to render: a glTF 2.0 file (.gltf or .glb), or a job file (.json) naming one with settings")
       ->required();
@@ -73,9 +73,24 @@ int main(int argc, char** argv) {
                   "Rotation of the environment about +Y in degrees, counter-clockwise seen from above (default 0)");
   cmd->add_option("--preview", render.preview, "Also write an 8-bit sRGB PNG preview to this path");
   cmd->add_option("--pixel-type", render.pixel_type,
-                  "How the EXR stores R, G, B, A: float (default; 32-bit) or half (16-bit: half the size, 11 bits of "
-                  "precision; values above 65504 are clamped to it, with a warning)")
+                  "How the EXR stores R, G, B, A and the light AOVs: half (default; 16-bit, 11 bits of precision, "
+                  "values above 65504 clamped to it with a warning) or float (32-bit). Data AOVs are always float")
       ->check(CLI::IsMember({"float", "half"}));
+  cmd->add_option("--aovs", render.aovs,
+                  "Layers beside the beauty, comma-separated: albedo, normal (N), depth (Z), position (P), emission, "
+                  "direct, indirect, variance, spp, object_id, material_id, crypto_object, crypto_material (Cryptomatte), "
+                  "or all");
+  cmd->add_option("--compression", render.compression, "EXR compression: zip (default), piz, dwaa or none")
+      ->check(CLI::IsMember({"zip", "piz", "dwaa", "none"}));
+  cmd->add_flag("--multipart", render.multipart, "Write each layer as its own part of a multi-part EXR (default: one part)");
+  cmd->add_option("--crop", render.crop,
+                  "Render only pixels x0 <= x < x1, y0 <= y < y1; the EXR's data window holds them inside the full "
+                  "display window, so crops composite in place")
+      ->expected(4);
+  cmd->add_option("--sample-range", render.sample_range,
+                  "Render sample indices START .. START+COUNT-1 of every pixel (instead of --spp): a slice of a "
+                  "render that 'prism merge' combines with the others")
+      ->expected(2);
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 
   CompareOptions compare;

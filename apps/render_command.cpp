@@ -16,7 +16,9 @@
 #include "io/atomic_file.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
+#include "io/camera_attributes.h"
 #include "io/render_attributes.h"
+#include "io/render_layers.h"
 
 namespace prism {
 namespace {
@@ -46,7 +48,11 @@ int render(const RenderOptions& o) {
   const Scene& scene = *p.scene;
   const std::unique_ptr<Integrator> integrator = make_integrator(settings);
   const Camera camera(p.camera, settings.width, settings.height);
-  Film film(settings.width, settings.height);
+  const PixelWindow full{0, 0, settings.width, settings.height};
+  const PixelWindow window = settings.crop.empty() ? full : settings.crop;
+  Film film(window.width(), window.height(), settings.aovs);
+  if (settings.aovs.has(Aov::CryptoObject) || settings.aovs.has(Aov::CryptoMaterial))
+    film.set_cryptomatte_ids(object_cryptomatte_ids(scene.desc()), material_cryptomatte_ids(scene.desc()));
   RenderProgress progress;
   RenderStats stats;
   {
@@ -55,22 +61,29 @@ int render(const RenderOptions& o) {
     stats = prism::render(scene, camera, *integrator, settings, film, &progress);
   }
 
-  const std::vector<float> rgba = film.resolve_rgba();
-  std::vector<ExrAttribute> attributes = render_attributes(settings, stats);
-  attributes.push_back({"prism/version", std::string(PRISM_VERSION)});
-  attributes.push_back({"prism/scene", o.scene});
-  attributes.push_back({"prism/camera", p.camera.name});
+  ExrImage image;
+  image.display = full;
+  image.data = window;
+  image.attributes = render_attributes(settings, stats);
+  for (ExrAttribute& a : camera_attributes(camera)) image.attributes.push_back(std::move(a));
+  image.attributes.push_back({"prism/version", std::string(PRISM_VERSION)});
+  image.attributes.push_back({"prism/scene", o.scene});
+  image.attributes.push_back({"prism/camera", p.camera.name});
   if (scene.desc().environment.present) {
-    attributes.push_back({"prism/environment", scene.desc().environment.source.empty()
-                                                   ? std::string("constant")
-                                                   : scene.desc().environment.source});
+    image.attributes.push_back({"prism/environment", scene.desc().environment.source.empty()
+                                                         ? std::string("constant")
+                                                         : scene.desc().environment.source});
   }
-  std::vector<ExrChannel> extra;
-  if (stats.spp_min != stats.spp_max) extra.push_back({"spp", film.resolve_counts()});
-  const std::string pixel_type = o.pixel_type ? *o.pixel_type : (p.job && p.job->pixel_type ? *p.job->pixel_type : "float");
-  const ExrPixelType beauty = pixel_type == "half" ? ExrPixelType::Half : ExrPixelType::Float;
-  const ExrWriteReport written = write_exr(output, settings.width, settings.height, rgba, attributes, extra, beauty);
-  if (preview) write_png_preview(*preview, settings.width, settings.height, rgba);
+  const std::optional<std::string> job_type = p.job ? p.job->pixel_type : std::nullopt;
+  const std::string pixel_type = o.pixel_type ? *o.pixel_type : job_type.value_or("half");
+  LayerOptions layers;
+  layers.beauty = pixel_type == "float" ? ExrPixelType::Float : ExrPixelType::Half;
+  add_render_layers(film, scene.desc(), layers, image);
+  const std::optional<std::string> job_compression = p.job ? p.job->compression : std::nullopt;
+  image.compression = *parse_exr_compression(o.compression ? *o.compression : job_compression.value_or("zip"));
+  image.multipart = o.multipart || (p.job && p.job->multipart.value_or(false));
+  const ExrWriteReport written = write_exr(output, image);
+  if (preview) write_png_preview(*preview, window.width(), window.height(), film.resolve_rgba());
 
   if (!o.quiet) {
     if (written.nonfinite > 0)

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/render_settings.h"
 
@@ -13,7 +14,12 @@ namespace prism {
 struct RenderOptions {
   std::string scene;
   std::optional<std::string> output, preview;
-  std::optional<std::string> pixel_type;  // "float" or "half" for the beauty channels
+  std::optional<std::string> pixel_type;   // "float" or "half" for the beauty channels
+  std::optional<std::string> compression;  // "zip", "piz", "dwaa", "none"
+  bool multipart = false;
+  std::optional<std::string> aovs;         // "albedo,normal,..."
+  std::vector<int> crop;                   // x0 y0 x1 y1
+  std::vector<uint64_t> sample_range;      // first count
   std::optional<std::string> resolution;  // "WxH", parsed into settings
   std::optional<std::string> time;        // "30s", "2m", parsed into settings
   RenderSettingsOverride settings;

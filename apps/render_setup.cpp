@@ -41,7 +41,25 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
     if (!seconds || !(*seconds > 0)) throw UsageError("--time: expected a duration such as 30s, 2m or 1h30m, got '" + *o.time + "'");
     cli.time_budget = *seconds;
   }
+  if (o.aovs) {
+    try {
+      cli.aovs = parse_aovs(*o.aovs);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--aovs: ") + e.what());
+    }
+  }
+  if (!o.crop.empty()) cli.crop = PixelWindow{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
+  if (!o.sample_range.empty()) {
+    if (o.settings.spp) throw UsageError("--sample-range gives the sample count: use it or --spp, not both");
+    if (o.sample_range[1] < 1 || o.sample_range[1] > (1u << 30))
+      throw UsageError("--sample-range: COUNT must be between 1 and 2^30");
+    cli.first_sample = o.sample_range[0];
+    cli.spp = int(o.sample_range[1]);
+  }
   cli.apply_to(s);
+  const bool sliced = !o.sample_range.empty() || (job && job->settings.first_sample);
+  if (sliced && (s.time_budget > 0 || s.noise_target > 0))
+    throw UsageError("a sample range renders a fixed slice of samples: it cannot be combined with --time or --noise");
   // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
   const bool spp_given = o.settings.spp || (job && job->settings.spp);
   if (!spp_given && s.time_budget > 0) s.spp = s.noise_target > 0 ? 4096 : (1 << 30);
@@ -94,6 +112,10 @@ PreparedRender prepare_render(const RenderOptions& o) {
     throw InputError(o.scene, "camera", e.what());
   }
   if (p.settings.width == 0 || p.settings.height == 0) default_resolution(p.camera, p.settings.width, p.settings.height);
+  const PixelWindow& crop = p.settings.crop;
+  if (crop != PixelWindow{} && (crop.empty() || !PixelWindow{0, 0, p.settings.width, p.settings.height}.contains(crop)))
+    throw UsageError(fmt::format("--crop {} {} {} {}: expected 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {} (the image size)",
+                                 crop.x0, crop.y0, crop.x1, crop.y1, p.settings.width, p.settings.height));
   try {
     make_sampler(p.settings.sampler, 0);
     make_integrator(p.settings);

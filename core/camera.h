@@ -17,6 +17,17 @@ class Camera {
 
   const CameraDesc& desc() const { return desc_; }
 
+  // Planar depth of p: its distance along the view axis (camera-space z), for the depth AOV.
+  float planar_depth(const Vec3& p) const { return dot(p - position_, forward_); }
+  // The orthonormal view frame (right, up, forward = the local -Z), its origin, and the half
+  // extents of the image plane at unit distance (perspective) or in scene units (orthographic).
+  const Vec3& position() const { return position_; }
+  const Vec3& right() const { return right_; }
+  const Vec3& up() const { return up_; }
+  const Vec3& forward() const { return forward_; }
+  float half_width() const { return half_w_; }
+  float half_height() const { return half_h_; }
+
   // The same camera in coordinates whose origin sits at world position `origin` (a scene's render
   // origin, Scene::origin()); the shift composes in double, before anything is rounded to float.
   Camera relative_to(const Vec3& origin) const;

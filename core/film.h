@@ -1,19 +1,33 @@
-// Film: per-pixel sums of radiance, squared radiance and alpha in double, with sample counts.
+// Film: per-pixel sums of radiance, squared radiance and alpha in double, with sample counts, and
+// the AOVs asked for (averaged sums, the nearest hit's depth and ids, Cryptomatte id counts).
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "core/aov.h"
+#include "core/id_counts.h"
 #include "core/vec3.h"
 
 namespace prism {
 
 class Film {
  public:
-  Film(int width, int height);
+  // The AOVs averaged over a pixel's samples, three components each, in this order.
+  static constexpr Aov kAveraged[] = {Aov::Albedo, Aov::Normal, Aov::Position, Aov::Emission, Aov::Direct, Aov::Indirect};
+
+  struct Pixel {
+    double sum[4] = {0, 0, 0, 0};
+    double sum_sq[3] = {0, 0, 0};
+    uint64_t count = 0;
+  };
+
+  Film(int width, int height, AovSet aovs = {});
 
   int width() const { return width_; }
   int height() const { return height_; }
+  const AovSet& aovs() const { return aovs_; }
 
   // Adds one sample; only the thread rendering the pixel's tile may call it for that pixel.
   void add_sample(int x, int y, const Rgb& radiance, float alpha) {
@@ -27,6 +41,14 @@ class Film {
     px.sum_sq[2] += double(radiance.z) * radiance.z;
     px.count += 1;
   }
+  // Adds the AOVs of the sample just added with add_sample: `depth` is its planar camera depth
+  // (kBackgroundDepth on a miss).
+  void add_aov_sample(int x, int y, const AovSample& s, float depth);
+  // The Cryptomatte id (float bits) of each object and material index, for the Cryptomatte AOVs.
+  void set_cryptomatte_ids(std::vector<uint32_t> objects, std::vector<uint32_t> materials) {
+    object_ids_ = std::move(objects);
+    material_ids_ = std::move(materials);
+  }
 
   // Mean of the samples of pixel (x, y) as RGBA; zero for a pixel with no samples.
   void mean(int x, int y, float rgba[4]) const;
@@ -39,18 +61,46 @@ class Film {
   std::vector<float> resolve_rgba() const;
   // Samples per pixel, top row first.
   std::vector<float> resolve_counts() const;
+  // Component c (0-2) of an averaged AOV's per-pixel mean, top row first.
+  std::vector<float> resolve_average(Aov aov, int c) const;
 
- private:
-  struct Pixel {
-    double sum[4] = {0, 0, 0, 0};
-    double sum_sq[3] = {0, 0, 0};
-    uint64_t count = 0;
-  };
+  // The raw accumulators, for saving, restoring and merging partial renders.
   Pixel& pixel(int x, int y) { return pixels_[size_t(y) * width_ + x]; }
   const Pixel& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
+  // Sums of the averaged AOVs: 3 per entry of kAveraged that is in aovs(), in that order.
+  int average_slots() const { return average_stride_; }
+  double* average_sums(int x, int y) { return &average_sums_[(size_t(y) * width_ + x) * average_stride_]; }
+  const double* average_sums(int x, int y) const { return &average_sums_[(size_t(y) * width_ + x) * average_stride_]; }
+  // The slot of an averaged AOV within average_sums, or -1 when it is not accumulated.
+  int average_slot(Aov aov) const;
+  // The nearest first hit: its depth (kBackgroundDepth when none) and object and material index.
+  float& nearest_depth(int x, int y) { return nearest_depth_[size_t(y) * width_ + x]; }
+  float nearest_depth(int x, int y) const { return nearest_depth_[size_t(y) * width_ + x]; }
+  int32_t& nearest_object(int x, int y) { return nearest_object_[size_t(y) * width_ + x]; }
+  int32_t nearest_object(int x, int y) const { return nearest_object_[size_t(y) * width_ + x]; }
+  int32_t& nearest_material(int x, int y) { return nearest_material_[size_t(y) * width_ + x]; }
+  int32_t nearest_material(int x, int y) const { return nearest_material_[size_t(y) * width_ + x]; }
+  bool tracks_nearest() const { return !nearest_depth_.empty(); }
+  std::vector<PixelIdCounts>& crypto_objects() { return crypto_objects_; }
+  const std::vector<PixelIdCounts>& crypto_objects() const { return crypto_objects_; }
+  std::vector<PixelIdCounts>& crypto_materials() { return crypto_materials_; }
+  const std::vector<PixelIdCounts>& crypto_materials() const { return crypto_materials_; }
 
+  // Adds another film's samples of the same pixels (disjoint sample slices of one render):
+  // sums and counts add, the nearer hit wins, Cryptomatte counts add. Throws
+  // std::invalid_argument when the sizes or AOVs differ.
+  void merge(const Film& other);
+
+ private:
   int width_, height_;
+  AovSet aovs_;
   std::vector<Pixel> pixels_;
+  int average_stride_ = 0;
+  std::vector<double> average_sums_;
+  std::vector<float> nearest_depth_;
+  std::vector<int32_t> nearest_object_, nearest_material_;
+  std::vector<PixelIdCounts> crypto_objects_, crypto_materials_;
+  std::vector<uint32_t> object_ids_, material_ids_;
 };
 
 }  // namespace prism

@@ -5,6 +5,9 @@
 #include <optional>
 #include <string>
 
+#include "core/aov.h"
+#include "core/pixel_window.h"
+
 namespace prism {
 
 struct RenderSettings {
@@ -26,6 +29,12 @@ struct RenderSettings {
   int threads = 0;             // 0 = all hardware threads
   std::string integrator = "path";
   std::string camera;          // name or index; "" = the first in node order
+  // The part of the image rendered (a crop); empty = all of it.
+  PixelWindow crop;
+  // Sample indices first_sample .. first_sample + spp - 1 of every pixel (a slice of a render
+  // split by samples, see prism merge); each pixel's random numbers depend on the index alone.
+  uint64_t first_sample = 0;
+  AovSet aovs;
 };
 
 // Settings given by a job file or on the command line; unset fields leave the settings alone.
@@ -35,6 +44,9 @@ struct RenderSettingsOverride {
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
   std::optional<std::string> camera, integrator, sampler;
+  std::optional<PixelWindow> crop;
+  std::optional<uint64_t> first_sample;
+  std::optional<AovSet> aovs;
 
   void apply_to(RenderSettings& s) const {
     if (width) s.width = *width;
@@ -52,6 +64,9 @@ struct RenderSettingsOverride {
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;
     if (integrator) s.integrator = *integrator;
+    if (crop) s.crop = *crop;
+    if (first_sample) s.first_sample = *first_sample;
+    if (aovs) s.aovs = *aovs;
   }
 };
 

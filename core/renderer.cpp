@@ -9,6 +9,7 @@
 #include <cmath>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 
 #include "core/sample_schedule.h"
 #include "core/sampler_factory.h"
@@ -19,6 +20,9 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
                    const RenderSettings& settings, Film& film, RenderProgress* progress) {
   const Camera camera = world_camera.relative_to(scene.origin());  // rays in the scene's coordinates
   const int width = film.width(), height = film.height();
+  // Film pixel (x, y) is image pixel (x + x0, y + y0): a crop renders the pixels a full render would.
+  const int x_offset = settings.crop.empty() ? 0 : settings.crop.x0, y_offset = settings.crop.empty() ? 0 : settings.crop.y0;
+  const bool path_aovs = film.aovs().needs_path_data();
   const int tile = std::max(1, settings.tile_size);
   const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
   make_sampler(settings.sampler, settings.seed);  // reject an unknown name before any work
@@ -35,17 +39,27 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     const auto sampler = make_sampler(settings.sampler, settings.seed);
     RayCounters counters;
     uint64_t nonfinite = 0, taken = 0;
+    AovSample aov;  // filled only when the film has AOVs
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
+        if (progress && progress->stop.load(std::memory_order_relaxed)) break;
         const uint64_t end = target[size_t(y) * width + x];
+        const int px = x + x_offset, py = y + y_offset;
         for (uint64_t s = film.sample_count(x, y); s < end; ++s) {
-          sampler->start_pixel_sample(x, y, s);
+          sampler->start_pixel_sample(px, py, settings.first_sample + s);
           const Vec2 jitter = sampler->next_2d();  // box filter: uniform in the pixel
-          const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-          const RadianceSample L = integrator.li(scene, ray, *sampler, counters);
+          const Ray ray = camera.generate_ray(float(px) + jitter.x, float(py) + jitter.y);
+          if (path_aovs) aov = AovSample{};
+          const RadianceSample L = integrator.li(scene, ray, *sampler, counters, path_aovs ? &aov : nullptr);
           // A non-finite estimate counts as a black sample, so counts stay sample indices.
           const bool finite = is_finite(L.radiance) && std::isfinite(L.alpha);
           film.add_sample(x, y, finite ? L.radiance : Rgb(0.0f), finite ? L.alpha : 0.0f);
+          if (path_aovs) {
+            if (!finite) aov.emission = aov.direct = aov.indirect = Rgb(0.0f);
+            const float depth = aov.hit ? camera.planar_depth(aov.position) : kBackgroundDepth;
+            if (aov.hit) aov.position = aov.position + scene.origin();  // back to world coordinates
+            film.add_aov_sample(x, y, aov, depth);
+          }
           nonfinite += !finite;
           ++taken;
         }
@@ -70,13 +84,16 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
   SampleSchedule schedule(settings, width, height);
   std::optional<tbb::task_arena> arena;
   if (settings.threads > 0) arena.emplace(settings.threads);
-  while (schedule.next_pass(film, elapsed(), samples.load(), target)) {
+  if (!settings.crop.empty() && (settings.crop.width() != width || settings.crop.height() != height))
+    throw std::invalid_argument("the film does not match the crop window");
+  while (!(progress && progress->stop.load()) && schedule.next_pass(film, elapsed(), samples.load(), target)) {
     if (progress)
       progress->samples_total.store(std::max(schedule.expected_samples(), samples.load()), std::memory_order_relaxed);
     if (arena) arena->execute(run_pass);
     else run_pass();
   }
 
+  stats.stopped = progress && progress->stop.load();
   stats.samples = samples;
   stats.passes = schedule.passes() - 1;
   stats.seconds = elapsed();

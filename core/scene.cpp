@@ -369,6 +369,7 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
     }
   }
   hit.material = prim.material;
+  hit.object = instance;
   hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
   const int base = emitters_.triangle_base(instance, primitive);
   hit.emitter = base >= 0 ? base + static_cast<int>(rh.hit.primID) : -1;
@@ -406,6 +407,7 @@ void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceH
   hit.tangent = length_squared(t) > 0 ? normalize(t) : Vec3(1, 0, 0);
   hit.tangent_sign = 1.0f;
   hit.material = s.material;
+  hit.object = static_cast<int>(desc_.instances.size() + rh.hit.primID);
   hit.triangle = {};  // a ray may meet a sphere twice
   hit.emitter = emitters_.sphere_emitter(static_cast<int>(rh.hit.primID));
 }

@@ -1,6 +1,7 @@
 #include "core/scene_desc.h"
 
 #include <algorithm>
+#include <string>
 
 namespace prism {
 
@@ -57,6 +58,18 @@ int SceneDesc::find_material(const std::string& name) const {
   for (size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == name) return static_cast<int>(i);
   return -1;
+}
+
+std::string SceneDesc::object_name(size_t object) const {
+  if (object < instances.size())
+    return instances[object].name.empty() ? "instance " + std::to_string(object) : instances[object].name;
+  const size_t s = object - instances.size();
+  return s < spheres.size() && !spheres[s].name.empty() ? spheres[s].name : "sphere " + std::to_string(s);
+}
+
+std::string SceneDesc::material_name(size_t id) const {
+  if (id >= materials.size()) return "default";
+  return materials[id].name.empty() ? "material " + std::to_string(id) : materials[id].name;
 }
 
 Bounds3 scene_bounds(const SceneDesc& scene) {

@@ -188,6 +188,11 @@ struct SceneDesc {
   SceneFeatures features() const;
   size_t triangle_count() const;  // over all instances
   int find_material(const std::string& name) const;  // -1 when absent
+  // Objects for AOVs and Cryptomatte: the instances, then the spheres.
+  size_t object_count() const { return instances.size() + spheres.size(); }
+  std::string object_name(size_t object) const;  // its name, else "instance 3" / "sphere 0"
+  // Material ids for AOVs: the materials, then the default material (index materials.size()).
+  std::string material_name(size_t id) const;  // its name, else "material 2" / "default"
 };
 
 struct Bounds3 {

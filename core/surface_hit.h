@@ -16,6 +16,7 @@ struct SurfaceHit {
   Vec3 tangent;    // toward +u, unit; zero when the surface has no uv parameterisation
   float tangent_sign = 1;  // bitangent = sign x cross(ns, tangent) points up the texture image
   int material = -1;
+  int object = -1;   // SceneDesc::object_name's index: the instance, or instances + sphere
   int emitter = -1;  // index into Emitters, or -1 when the surface does not emit
   TriangleId triangle;  // the triangle hit; none for spheres, which a ray may meet twice
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/spawn.h"
+#include "integrators/first_hit_aovs.h"
 #include "integrators/medium_stack.h"
 #include "materials/material_eval.h"
 #include "materials/medium.h"
@@ -52,11 +53,12 @@ Rgb PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, cons
 // Each bounce draws, in order: emitter pick (1D), point on the emitter (2D), BSDF lobe (1D) and
 // direction (2D), then the Russian-roulette decision (1D) once it applies.
 RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
-                                  RayCounters& counters) const {
+                                  RayCounters& counters, AovSample* aov) const {
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   RadianceSample out;
-  Rgb direct(0.0f), indirect(0.0f), beta(1.0f);  // light after at most one scattering event, and after more
+  // Light seen directly, after one scattering event, and after more.
+  Rgb emitted(0.0f), direct(0.0f), indirect(0.0f), beta(1.0f);
   float eta_scale = 1.0f;  // undoes the 1/eta^2 radiance scaling in Russian roulette decisions
   Ray ray = camera_ray;
   ++counters.camera;
@@ -76,11 +78,15 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       if (env.present()) {
         const Vec3 w = normalize(ray.dir);
         const float weight = prev_delta ? 1.0f : power_heuristic(prev_bsdf_pdf, emitters.environment_pdf(w));
-        (depth <= 1 ? direct : indirect) += beta * env.radiance(w) * beer_lambert(media.sigma_a(), kInfinity) * weight;
+        (depth == 0 ? emitted : depth == 1 ? direct : indirect) +=
+            beta * env.radiance(w) * beer_lambert(media.sigma_a(), kInfinity) * weight;
       }
       break;
     }
-    if (depth == 0) out.alpha = 1.0f;
+    if (depth == 0) {
+      out.alpha = 1.0f;
+      if (aov) report_first_hit(desc, hit, *aov);
+    }
     // Beer-Lambert along the segment, measured between the surface points themselves: the spawned
     // origin sits off its surface by the hit's error bound, which far from the world origin is a
     // visible part of a thin slab's thickness.
@@ -94,7 +100,7 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
       if (!is_black(Le)) {
         float w = 1.0f;
         if (!prev_delta) w = power_heuristic(prev_bsdf_pdf, emitters.pdf(hit.emitter, prev_p, hit.p, hit.ng));
-        (depth <= 1 ? direct : indirect) += beta * Le * w;
+        (depth == 0 ? emitted : depth == 1 ? direct : indirect) += beta * Le * w;
       }
     }
     if (depth >= max_depth_ || last_vertex) break;
@@ -139,7 +145,12 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
     const float m = max_component(indirect);
     if (m > clamp_indirect_) indirect *= clamp_indirect_ / m;
   }
-  out.radiance = direct + indirect;
+  out.radiance = emitted + direct + indirect;
+  if (aov) {
+    aov->emission = emitted;
+    aov->direct = direct;
+    aov->indirect = indirect;
+  }
   return out;
 }
 

@@ -19,8 +19,8 @@ class PathIntegrator final : public Integrator {
         max_diffuse_depth_(max_diffuse_depth),
         clamp_indirect_(clamp_indirect) {}
 
-  RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
-                    RayCounters& counters) const override;
+  RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
+                    AovSample* aov = nullptr) const override;
 
  private:
   Rgb direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,

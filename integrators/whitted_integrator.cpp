@@ -4,6 +4,7 @@
 
 #include "core/punctual_light.h"
 #include "core/spawn.h"
+#include "integrators/first_hit_aovs.h"
 #include "materials/dielectric_bxdf.h"
 #include "materials/fresnel.h"
 #include "materials/material_eval.h"
@@ -11,27 +12,40 @@
 
 namespace prism {
 
-RadianceSample WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler&, RayCounters& counters) const {
+RadianceSample WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, Sampler&, RayCounters& counters,
+                                     AovSample* aov) const {
   ++counters.camera;
   RadianceSample out;
-  out.radiance = trace(scene, camera_ray, nullptr, 0, MediumStack(), counters, &out.alpha);
+  out.radiance = trace(scene, camera_ray, nullptr, 0, MediumStack(), counters, &out.alpha, aov);
   return out;
 }
 
 Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* from, int depth,
-                             const MediumStack& media, RayCounters& counters, float* alpha) const {
+                             const MediumStack& media, RayCounters& counters, float* alpha, AovSample* aov) const {
   SurfaceHit hit;
   if (!scene.intersect(ray, hit, depth == 0)) {
     const EnvironmentLight& env = scene.emitters().environment();
-    return env.present() ? env.radiance(normalize(ray.dir)) * beer_lambert(media.sigma_a(), kInfinity) : Rgb{};
+    const Rgb sky = env.present() ? env.radiance(normalize(ray.dir)) * beer_lambert(media.sigma_a(), kInfinity) : Rgb{};
+    if (aov) aov->emission = sky;
+    return sky;
   }
   if (alpha) *alpha = 1.0f;
+  if (aov) report_first_hit(scene.desc(), hit, *aov);
   const SceneDesc& desc = scene.desc();
   const Vec3 wo = -normalize(ray.dir);
   // Measured between the surface points, not from the offset origin (as in the path tracer).
   const Rgb absorbed = beer_lambert(media.sigma_a(), from ? length(hit.p - *from) : hit.t * length(ray.dir));
-  Rgb L = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
-  if (depth >= max_depth_) return L * absorbed;
+  const Rgb Le = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
+  Rgb direct(0.0f), indirect(0.0f);  // from the lights, and through mirrors and glass
+  const auto result = [&] {
+    if (aov) {
+      aov->emission = Le * absorbed;
+      aov->direct = direct * absorbed;
+      aov->indirect = indirect * absorbed;
+    }
+    return (Le + direct + indirect) * absorbed;
+  };
+  if (depth >= max_depth_) return result();
 
   const MaterialDesc& material = desc.material(hit.material);
   const SurfaceParams p = surface_params(desc, material, hit.uv);
@@ -68,7 +82,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       const float cos_i = dot(in.wi, ns);
       if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
       ++counters.shadow;
-      if (!scene.occluded(spawn_ray_toward(hit, in.wi, in.distance))) L += f * in.irradiance * cos_i;
+      if (!scene.occluded(spawn_ray_toward(hit, in.wi, in.distance))) direct += f * in.irradiance * cos_i;
     }
   }
 
@@ -77,7 +91,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
     const Vec3 wr = reflect(wo, n_wo);
     if (dot(wr, ng) * dot(wo, ng) > 0) {
       ++counters.extension;
-      L += reflect_weight * trace(scene, spawn_ray(hit, wr), &hit.p, depth + 1, media, counters, nullptr);
+      indirect += reflect_weight * trace(scene, spawn_ray(hit, wr), &hit.p, depth + 1, media, counters);
     }
   }
 
@@ -85,7 +99,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
   if (!is_black(transmit_weight)) {
     if (!volume) {
       ++counters.extension;
-      L += transmit_weight * trace(scene, spawn_ray(hit, -wo), &hit.p, depth + 1, media, counters, nullptr);
+      indirect += transmit_weight * trace(scene, spawn_ray(hit, -wo), &hit.p, depth + 1, media, counters);
     } else {
       const Vec3 n = from_front ? n_front : -n_front;  // on wo's side
       const float etap = from_front ? eta : 1.0f / eta;
@@ -94,12 +108,12 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
         MediumStack inside = media;
         inside.cross(material, hit.material, from_front);
         ++counters.extension;
-        L += transmit_weight * (1.0f / (etap * etap)) *
-             trace(scene, spawn_ray(hit, wt), &hit.p, depth + 1, inside, counters, nullptr);
+        indirect += transmit_weight * (1.0f / (etap * etap)) *
+                    trace(scene, spawn_ray(hit, wt), &hit.p, depth + 1, inside, counters);
       }
     }
   }
-  return L * absorbed;
+  return result();
 }
 
 }  // namespace prism

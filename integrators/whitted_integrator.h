@@ -14,14 +14,14 @@ class WhittedIntegrator final : public Integrator {
  public:
   explicit WhittedIntegrator(int max_depth) : max_depth_(max_depth) {}
 
-  RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
-                    RayCounters& counters) const override;
+  RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
+                    AovSample* aov = nullptr) const override;
 
  private:
   // `from` is the surface point a secondary ray leaves (its origin is offset off it), null for
-  // the camera ray; `alpha` receives coverage for the camera ray.
+  // the camera ray; `alpha` receives coverage and `aov` the AOVs for the camera ray.
   Rgb trace(const Scene& scene, const Ray& ray, const Vec3* from, int depth, const MediumStack& media,
-            RayCounters& counters, float* alpha) const;
+            RayCounters& counters, float* alpha = nullptr, AovSample* aov = nullptr) const;
 
   int max_depth_;
 };

@@ -1,39 +1,30 @@
-// OpenEXR output: beauty as float or half R,G,B,A with render metadata as header attributes.
+// OpenEXR output: an ExrImage written atomically, with only finite values and reproducible bytes.
 #pragma once
 
 #include <string>
-#include <utility>
-#include <variant>
 #include <vector>
 
+#include "io/exr_image.h"
+
 namespace prism {
-
-using ExrAttribute = std::pair<std::string, std::variant<std::string, int, double>>;
-
-// A float channel beside the beauty: one value per pixel, top row first.
-struct ExrChannel {
-  std::string name;
-  std::vector<float> pixels;
-};
-
-// How the beauty channels (R, G, B, A) are stored; extra channels are always float.
-enum class ExrPixelType { Float, Half };
-
-// The largest finite half: values beyond it would become infinite in a half channel.
-inline constexpr float kHalfMax = 65504.0f;
 
 // What writing had to change so that the file holds only finite values.
 struct ExrWriteReport {
   int nonfinite = 0;  // NaN written as 0, +-Inf as the largest float (or half)
-  int clamped = 0;    // finite beauty values beyond +-65504 written as +-65504 (half only)
+  int clamped = 0;    // finite values beyond +-65504 in half channels written as +-65504
 };
 
-// Writes interleaved RGBA pixels (top row first), and any extra channels, to `path` through a
-// temporary file and a rename. Non-finite values never reach the file, nor, in half, values a half
-// cannot hold (OpenEXR's conversion would turn them into Inf). Throws OutputError naming the path
-// on failure.
+// Writes `image` to `path` through a temporary file in the same folder and a rename. Non-finite
+// values never reach the file, nor, in half channels, values a half cannot hold (OpenEXR's
+// conversion would turn them into Inf). The bytes depend only on the image: no date or host is
+// recorded. Throws OutputError naming the path on failure (the earlier file, if any, is kept).
+ExrWriteReport write_exr(const std::string& path, const ExrImage& image);
+
+// The common case: interleaved RGBA (top row first) as R, G, B, A of `type`, with attributes.
 ExrWriteReport write_exr(const std::string& path, int width, int height, const std::vector<float>& rgba,
-                         const std::vector<ExrAttribute>& attributes, const std::vector<ExrChannel>& extra = {},
-                         ExrPixelType beauty = ExrPixelType::Float);
+                         const std::vector<ExrAttribute>& attributes, ExrPixelType type = ExrPixelType::Float);
+
+// Interleaved RGBA as the four beauty channels of an image of that size.
+std::vector<ExrChannel> rgba_channels(int width, int height, const std::vector<float>& rgba, ExrPixelType type);
 
 }  // namespace prism

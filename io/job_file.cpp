@@ -11,6 +11,7 @@
 
 #include "io/duration_text.h"
 #include "io/errors.h"
+#include "io/exr_image.h"
 #include "io/image_decode.h"
 
 namespace prism {
@@ -27,7 +28,7 @@ class JobParser {
     JobFile job;
     job.path = file_;
     expect_object(root, "$");
-    warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
+    warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
                              "integrator", "sampler", "time", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
@@ -41,6 +42,39 @@ class JobParser {
     if (root.contains("pixel_type")) {
       job.pixel_type = string_at(root["pixel_type"], "$.pixel_type");
       if (*job.pixel_type != "float" && *job.pixel_type != "half") fail("$.pixel_type", "expected \"float\" or \"half\"");
+    }
+    if (root.contains("compression")) {
+      job.compression = string_at(root["compression"], "$.compression");
+      if (!parse_exr_compression(*job.compression)) fail("$.compression", "expected \"zip\", \"piz\", \"dwaa\" or \"none\"");
+    }
+    if (root.contains("multipart")) job.multipart = bool_at(root["multipart"], "$.multipart");
+    if (root.contains("aovs")) {
+      const json& a = root["aovs"];
+      std::string list;
+      if (a.is_string()) list = a.get<std::string>();
+      else if (a.is_array())
+        for (size_t i = 0; i < a.size(); ++i) list += "," + string_at(a[i], "$.aovs[" + std::to_string(i) + "]");
+      else fail("$.aovs", "expected a list of AOV names or a comma-separated string");
+      try {
+        job.settings.aovs = parse_aovs(list);
+      } catch (const std::invalid_argument& e) {
+        fail("$.aovs", e.what());
+      }
+    }
+    if (root.contains("crop")) {
+      const json& c = root["crop"];
+      if (!c.is_array() || c.size() != 4) fail("$.crop", "expected [x0, y0, x1, y1]");
+      int v[4];
+      for (int i = 0; i < 4; ++i) v[i] = int_at(c[size_t(i)], "$.crop[" + std::to_string(i) + "]", 0, 1 << 16);
+      if (v[2] <= v[0] || v[3] <= v[1]) fail("$.crop", "expected x0 < x1 and y0 < y1");
+      job.settings.crop = PixelWindow{v[0], v[1], v[2], v[3]};
+    }
+    if (root.contains("sample_range")) {
+      const json& r = root["sample_range"];
+      if (!r.is_array() || r.size() != 2) fail("$.sample_range", "expected [first sample, count]");
+      if (root.contains("spp")) fail("$.sample_range", "give either \"spp\" or \"sample_range\" (its count), not both");
+      job.settings.first_sample = uint64_t(int_at(r[0], "$.sample_range[0]", 0, std::numeric_limits<int>::max()));
+      job.settings.spp = int_at(r[1], "$.sample_range[1]", 1, 1 << 30);
     }
     if (root.contains("resolution")) {
       const json& r = root["resolution"];

@@ -59,7 +59,9 @@ struct JobFile {
   std::string path;
   std::optional<std::string> scene;  // glTF path, resolved against the job file's folder
   std::optional<std::string> output, preview;
-  std::optional<std::string> pixel_type;  // "float" or "half": the beauty channels' type
+  std::optional<std::string> pixel_type;   // "float" or "half": the beauty channels' type
+  std::optional<std::string> compression;  // "zip", "piz", "dwaa" or "none"
+  std::optional<bool> multipart;
   RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;
   std::vector<JobSphere> spheres;

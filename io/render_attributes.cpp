@@ -23,6 +23,15 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
       {"prism/relativeError", stats.relative_error},
       {"prism/nonFiniteSamples", double(stats.nonfinite_samples)},
   };
+  if (!s.crop.empty()) a.push_back({"prism/crop", std::to_string(s.crop.x0) + " " + std::to_string(s.crop.y0) + " " +
+                                                     std::to_string(s.crop.x1) + " " + std::to_string(s.crop.y1)});
+  if (s.first_sample > 0) a.push_back({"prism/firstSample", std::to_string(s.first_sample)});
+  if (!s.aovs.empty()) {
+    std::string names;
+    for (size_t i = 0; i < aov_names().size(); ++i)
+      if (s.aovs.has(Aov(i))) names += (names.empty() ? "" : ",") + aov_names()[i];
+    a.push_back({"prism/aovs", names});
+  }
   if (timed || adaptive) {
     a.push_back({"prism/sppLimit", s.spp});
     a.push_back({"prism/passes", stats.passes});

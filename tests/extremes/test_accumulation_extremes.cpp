@@ -72,7 +72,7 @@ TEST(AccumulationExtremes, HalfOutputClampsTo65504AndNeverWritesInf) {
     std::vector<float> rgba = values;
     rgba.resize((values.size() / 4 + 1) * 4, 0.25f);
     return rgba;
-  }(), {}, {}, ExrPixelType::Half);
+  }(), {}, ExrPixelType::Half);
   EXPECT_EQ(report.clamped, 6);    // 65519, 65520, 1e5, 1e30, -1e6, -65505
   EXPECT_EQ(report.nonfinite, 3);  // inf, -inf, NaN
   auto in = OIIO::ImageInput::open(path);

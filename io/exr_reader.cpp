@@ -1,0 +1,101 @@
+#include "io/exr_reader.h"
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputPart.h>
+#include <ImfIntAttribute.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfMultiPartInputFile.h>
+#include <ImfPartType.h>
+#include <ImfStringAttribute.h>
+
+#include <exception>
+#include <limits>
+
+#include "io/errors.h"
+
+namespace prism {
+namespace {
+
+PixelWindow window(const Imath::Box2i& b) { return {b.min.x, b.min.y, b.max.x + 1, b.max.y + 1}; }
+
+}  // namespace
+
+ExrImage read_exr(const std::string& path) {
+  ExrImage image;
+  try {
+    Imf::MultiPartInputFile file(path.c_str());
+    for (int p = 0; p < file.parts(); ++p) {
+      const Imf::Header& header = file.header(p);
+      const PixelWindow dw = window(header.dataWindow());
+      if (p == 0) {
+        image.display = window(header.displayWindow());
+        image.data = dw;
+        image.multipart = file.parts() > 1;
+        switch (header.compression()) {
+          case Imf::NO_COMPRESSION: image.compression = ExrCompression::None; break;
+          case Imf::PIZ_COMPRESSION: image.compression = ExrCompression::Piz; break;
+          case Imf::DWAA_COMPRESSION: image.compression = ExrCompression::Dwaa; break;
+          default: image.compression = ExrCompression::Zip; break;
+        }
+        for (auto it = header.begin(); it != header.end(); ++it) {
+          const Imf::Attribute& a = it.attribute();
+          if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a)) image.attributes.push_back({it.name(), s->value()});
+          else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&a)) image.attributes.push_back({it.name(), i->value()});
+          else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&a)) image.attributes.push_back({it.name(), d->value()});
+          else if (const auto* f = dynamic_cast<const Imf::FloatAttribute*>(&a)) image.attributes.push_back({it.name(), double(f->value())});
+          else if (const auto* m = dynamic_cast<const Imf::M44fAttribute*>(&a)) {
+            ExrMatrix v;
+            for (int r = 0; r < 4; ++r)
+              for (int c = 0; c < 4; ++c) v[size_t(4 * r + c)] = m->value()[r][c];
+            image.attributes.push_back({it.name(), v});
+          }
+        }
+      } else if (!(dw == image.data)) {
+        throw InputError(path, "part " + std::to_string(p), "its data window differs from the first part's");
+      }
+      if (header.hasTileDescription() && header.hasType() && header.type() != Imf::SCANLINEIMAGE)
+        throw InputError(path, "part " + std::to_string(p), "only scanline images can be read");
+      const size_t width = size_t(dw.width()), pixels = width * size_t(dw.height());
+      if (pixels > (size_t(1) << 31)) throw InputError(path, "dataWindow", "too large");
+      Imf::FrameBuffer fb;
+      const size_t first = image.channels.size();
+      for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+        if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+          throw InputError(path, std::string("channel ") + it.name(), "subsampled channels are not supported");
+        ExrChannel c;
+        c.name = it.name();
+        c.type = it.channel().type == Imf::UINT ? ExrPixelType::Uint
+                 : it.channel().type == Imf::HALF ? ExrPixelType::Half
+                                                  : ExrPixelType::Float;
+        image.channels.push_back(std::move(c));
+      }
+      for (size_t i = first; i < image.channels.size(); ++i) {
+        ExrChannel& c = image.channels[i];
+        char* base;
+        if (c.type == ExrPixelType::Uint) {
+          c.bits.assign(pixels, 0);
+          base = reinterpret_cast<char*>(c.bits.data());
+        } else {
+          c.values.assign(pixels, 0.0f);
+          base = reinterpret_cast<char*>(c.values.data());
+        }
+        fb.insert(c.name, Imf::Slice::Make(c.type == ExrPixelType::Uint ? Imf::UINT : Imf::FLOAT, base,
+                                           header.dataWindow(), 4, 4 * width));
+      }
+      Imf::InputPart part(file, p);
+      part.setFrameBuffer(fb);
+      part.readPixels(dw.y0, dw.y1 - 1);
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, "", std::string("cannot read EXR: ") + e.what());
+  }
+  return image;
+}
+
+}  // namespace prism

@@ -1,0 +1,16 @@
+// OpenEXR input for merge, resume and tests: every channel of a single- or multi-part scanline
+// file, with its windows and the attributes prism writes.
+#pragma once
+
+#include <string>
+
+#include "io/exr_image.h"
+
+namespace prism {
+
+// Reads `path` whole: half channels widen to float, uint channels keep their bits; string, int,
+// float, double and 4x4 float matrix attributes are kept (from the first part). Every part must
+// share the data window. Throws InputError naming the file for anything unreadable.
+ExrImage read_exr(const std::string& path);
+
+}  // namespace prism

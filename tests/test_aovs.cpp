@@ -1,0 +1,195 @@
+// AOVs: each layer means what its name says on a scene whose answers are known, the light layers
+// add up to the beauty, and crops and sample slices reproduce a whole render.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/camera.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "integrators/path_integrator.h"
+#include "integrators/whitted_integrator.h"
+#include "io/render_layers.h"
+#include "scene_builders.h"
+
+namespace prism {
+namespace {
+
+constexpr int kSize = 32;
+const Rgb kAlbedo(0.6f, 0.4f, 0.2f);
+const Rgb kLight(4.0f, 3.0f, 2.0f);
+
+// Object 0: a floor at z = 0 facing +z (material 0). Object 1: a light facing it from z = 2,
+// seen at the image's top edge (material 1). Object 2: a sphere (the default material).
+SceneDesc aov_scene() {
+  SceneDesc desc;
+  const int floor = test::add_material(desc, kAlbedo);
+  const int light = test::add_material(desc, Rgb(0.0f), kLight);
+  test::add_quad(desc, Vec3(-3, -3, 0), Vec3(6, 0, 0), Vec3(0, 6, 0), floor);
+  desc.instances.back().name = "floor";
+  test::add_quad(desc, Vec3(-3, 1.2f, 2), Vec3(0, 4, 0), Vec3(6, 0, 0), light);
+  desc.instances.back().name = "light";
+  test::add_sphere(desc, Vec3(-0.8f, -0.8f, 0.5f), 0.5f, -1);
+  desc.spheres.back().name = "ball";
+  return desc;
+}
+
+// Looking straight down -z from z = 5.
+CameraDesc top_camera() {
+  CameraDesc cam;
+  cam.camera_to_world = Transform::translate(Vec3(0, 0, 5));
+  cam.yfov = 0.9f;
+  return cam;
+}
+
+Film render_aovs(const Scene& scene, RenderSettings s, const Integrator& integrator) {
+  const PixelWindow window = s.crop.empty() ? PixelWindow{0, 0, s.width, s.height} : s.crop;
+  Film film(window.width(), window.height(), s.aovs);
+  film.set_cryptomatte_ids(object_cryptomatte_ids(scene.desc()), material_cryptomatte_ids(scene.desc()));
+  render(scene, Camera(top_camera(), s.width, s.height), integrator, s, film);
+  return film;
+}
+
+RenderSettings aov_settings() {
+  RenderSettings s;
+  s.width = s.height = kSize;
+  s.spp = 16;
+  s.seed = 5;
+  s.aovs = parse_aovs("all");
+  return s;
+}
+
+TEST(Aovs, EveryLayerMeansWhatItSays) {
+  const Scene scene(aov_scene());
+  const PathIntegrator path(8, 3);
+  const Film film = render_aovs(scene, aov_settings(), path);
+  ExrImage image;
+  add_render_layers(film, scene.desc(), LayerOptions{ExrPixelType::Float, 6}, image);
+  auto channel = [&](const char* name) {
+    const ExrChannel* c = image.find(name);
+    EXPECT_NE(c, nullptr) << name;
+    return c ? c->values : std::vector<float>(size_t(kSize) * kSize);
+  };
+  const auto R = channel("R"), G = channel("G"), A = channel("A"), Z = channel("Z");
+  const auto Nz = channel("N.Z"), Pz = channel("P.Z"), albedo_r = channel("albedo.R"), albedo_b = channel("albedo.B");
+  const auto emission_r = channel("emission.R"), direct_r = channel("direct.R"), indirect_r = channel("indirect.R");
+  const auto emission_g = channel("emission.G"), direct_g = channel("direct.G"), indirect_g = channel("indirect.G");
+  const auto object = channel("object_id.V"), material = channel("material_id.V"), spp = channel("spp.V");
+  const auto variance_r = channel("variance.R"), crypto_cov0 = channel("CryptoObject00.G"),
+             crypto_cov1 = channel("CryptoObject00.A");
+  int floor_pixels = 0, light_pixels = 0, ball_pixels = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const size_t i = size_t(y) * kSize + x;
+      // The light layers add up to the beauty.
+      EXPECT_NEAR(emission_r[i] + direct_r[i] + indirect_r[i], R[i], 1e-5f * (1 + R[i])) << x << "," << y;
+      EXPECT_NEAR(emission_g[i] + direct_g[i] + indirect_g[i], G[i], 1e-5f * (1 + G[i]));
+      EXPECT_EQ(spp[i], 16.0f);
+      EXPECT_FLOAT_EQ(variance_r[i], film.variance_of_mean(x, y).x);
+      EXPECT_NEAR(crypto_cov0[i] + crypto_cov1[i], A[i], 1e-6f) << "at most two objects per pixel here";
+      // The nearest hit's ids, and its planar depth.
+      if (A[i] == 0) {
+        EXPECT_EQ(Z[i], kBackgroundDepth);
+        EXPECT_EQ(object[i], -1.0f);
+        continue;
+      }
+      if (A[i] < 1) continue;  // an edge: averaged layers mix what the samples saw
+      if (object[i] == 0 && crypto_cov0[i] == 1) {  // all floor
+        ++floor_pixels;
+        EXPECT_NEAR(Z[i], 5.0f, 1e-5f);
+        EXPECT_NEAR(Nz[i], 1.0f, 1e-6f);
+        EXPECT_NEAR(Pz[i], 0.0f, 1e-6f);
+        EXPECT_NEAR(albedo_r[i], kAlbedo.x, 1e-6f);
+        EXPECT_NEAR(albedo_b[i], kAlbedo.z, 1e-6f);
+        EXPECT_EQ(material[i], 0.0f);
+        EXPECT_EQ(emission_r[i], 0.0f);
+        EXPECT_GT(direct_r[i], 0.0f);
+      } else if (object[i] == 1 && crypto_cov0[i] == 1) {  // the light, seen from behind: it faces the floor
+        ++light_pixels;
+        EXPECT_NEAR(Z[i], 3.0f, 1e-5f);
+        EXPECT_EQ(material[i], 1.0f);
+        EXPECT_NEAR(Nz[i], -1.0f, 1e-6f);
+        EXPECT_EQ(emission_r[i], 0.0f) << "one-sided emitters shine from their front only";
+      } else if (object[i] == 2 && crypto_cov0[i] == 1) {
+        ++ball_pixels;
+        EXPECT_EQ(material[i], 2.0f) << "the default material is numbered after the scene's";
+        EXPECT_GT(Z[i], 4.0f - 1e-5f);
+        EXPECT_LT(Z[i], 5.0f);
+      }
+    }
+  EXPECT_GT(floor_pixels, 100);
+  EXPECT_GT(ball_pixels, 5);
+  EXPECT_GT(light_pixels, 10);
+}
+
+TEST(Aovs, EmissionSeenDirectlyIsItsOwnLayer) {
+  SceneDesc desc = aov_scene();
+  desc.materials[1].double_sided = true;  // now the camera sees the light's emission too
+  const Scene scene(std::move(desc));
+  for (const std::string integrator : {"path", "whitted"}) {
+    const PathIntegrator path(8, 3);
+    const WhittedIntegrator whitted(8);
+    const Film film = render_aovs(scene, aov_settings(), integrator == "path" ? static_cast<const Integrator&>(path) : whitted);
+    const std::vector<float> emission = film.resolve_average(Aov::Emission, 0);
+    int light_pixels = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        if (film.nearest_object(x, y) != 1 || film.crypto_objects()[size_t(y) * kSize + x].size() != 1) continue;
+        ++light_pixels;
+        EXPECT_FLOAT_EQ(emission[size_t(y) * kSize + x], kLight.x) << integrator;
+      }
+    EXPECT_GT(light_pixels, 10) << integrator;
+  }
+}
+
+TEST(Aovs, ACropRendersThePixelsOfTheWholeImage) {
+  const Scene scene(aov_scene());
+  const PathIntegrator path(8, 3);
+  const Film whole = render_aovs(scene, aov_settings(), path);
+  RenderSettings s = aov_settings();
+  s.crop = {5, 7, 21, 30};
+  const Film crop = render_aovs(scene, s, path);
+  ASSERT_EQ(crop.width(), 16);
+  ASSERT_EQ(crop.height(), 23);
+  for (int y = 0; y < crop.height(); ++y)
+    for (int x = 0; x < crop.width(); ++x) {
+      float a[4], b[4];
+      crop.mean(x, y, a);
+      whole.mean(x + 5, y + 7, b);
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(a[c], b[c]) << x << "," << y;
+      ASSERT_EQ(crop.nearest_depth(x, y), whole.nearest_depth(x + 5, y + 7));
+      for (int k = 0; k < crop.average_slots(); ++k)
+        ASSERT_EQ(crop.average_sums(x, y)[k], whole.average_sums(x + 5, y + 7)[k]);
+    }
+}
+
+TEST(Aovs, SampleSlicesMergeIntoTheWholeRender) {
+  const Scene scene(aov_scene());
+  const PathIntegrator path(8, 3);
+  const Film whole = render_aovs(scene, aov_settings(), path);
+  RenderSettings s = aov_settings();
+  s.spp = 4;
+  Film merged = render_aovs(scene, s, path);
+  for (int slice = 1; slice < 4; ++slice) {
+    s.first_sample = uint64_t(4 * slice);
+    merged.merge(render_aovs(scene, s, path));
+  }
+  const std::vector<float> a = merged.resolve_rgba(), b = whole.resolve_rgba();
+  for (size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a[i], b[i], 1e-6f * (1 + std::abs(b[i]))) << i;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      ASSERT_EQ(merged.sample_count(x, y), 16u);
+      ASSERT_EQ(merged.nearest_depth(x, y), whole.nearest_depth(x, y));
+      ASSERT_EQ(merged.nearest_object(x, y), whole.nearest_object(x, y));
+      const Rgb va = merged.variance_of_mean(x, y), vb = whole.variance_of_mean(x, y);
+      ASSERT_NEAR(va.x, vb.x, 1e-5f * (vb.x + 1e-6f));
+    }
+  ExrImage ia, ib;
+  add_render_layers(merged, scene.desc(), {}, ia);
+  add_render_layers(whole, scene.desc(), {}, ib);
+  for (const char* name : {"CryptoObject00.R", "CryptoObject00.G", "CryptoObject01.R", "CryptoMaterial00.G"})
+    EXPECT_EQ(ia.find(name)->values, ib.find(name)->values) << name;
+}
+
+}  // namespace
+}  // namespace prism

@@ -5,6 +5,7 @@
 #include "apps/compare_command.h"
 #include "apps/converge_command.h"
 #include "apps/exit_codes.h"
+#include "apps/merge_command.h"
 #include "apps/render_command.h"
 
 int main(int argc, char** argv) {
@@ -99,6 +100,8 @@ int main(int argc, char** argv) {
   CLI::App* converge_cmd = add_converge_command(app, converge);
   BenchOptions bench;
   CLI::App* bench_cmd = add_bench_command(app, bench);
+  MergeOptions merge;
+  CLI::App* merge_cmd = add_merge_command(app, merge);
 
   try {
     app.parse(argc, argv);
@@ -110,5 +113,6 @@ int main(int argc, char** argv) {
   if (compare_cmd->parsed()) return run_compare(compare);
   if (converge_cmd->parsed()) return run_converge(converge);
   if (bench_cmd->parsed()) return run_bench(bench);
+  if (merge_cmd->parsed()) return run_merge(merge);
   return kExitUsage;
 }

@@ -15,6 +15,7 @@
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
 #include "io/exr_writer.h"
+#include "io/film_state.h"
 #include "io/png_writer.h"
 #include "io/camera_attributes.h"
 #include "io/render_attributes.h"
@@ -78,7 +79,9 @@ int render(const RenderOptions& o) {
   const std::string pixel_type = o.pixel_type ? *o.pixel_type : job_type.value_or("half");
   LayerOptions layers;
   layers.beauty = pixel_type == "float" ? ExrPixelType::Float : ExrPixelType::Half;
-  add_render_layers(film, scene.desc(), layers, image);
+  add_render_layers(film, &scene.desc(), layers, image);
+  // A sample slice is a part of a render: it carries its film exactly, for prism merge.
+  if (!o.sample_range.empty() || (p.job && p.job->settings.first_sample)) add_film_state(film, image);
   const std::optional<std::string> job_compression = p.job ? p.job->compression : std::nullopt;
   image.compression = *parse_exr_compression(o.compression ? *o.compression : job_compression.value_or("zip"));
   image.multipart = o.multipart || (p.job && p.job->multipart.value_or(false));

@@ -14,6 +14,8 @@
 
 #include <exception>
 #include <limits>
+#include <set>
+#include <string>
 
 #include "io/errors.h"
 
@@ -42,6 +44,11 @@ ExrImage read_exr(const std::string& path) {
           default: image.compression = ExrCompression::Zip; break;
         }
         for (auto it = header.begin(); it != header.end(); ++it) {
+          // The required attributes describe the file's layout, which ExrImage holds itself.
+          static const std::set<std::string> layout = {"channels", "compression", "dataWindow", "displayWindow",
+                                                       "lineOrder", "pixelAspectRatio", "screenWindowCenter",
+                                                       "screenWindowWidth", "name", "type", "version", "chunkCount"};
+          if (layout.count(it.name())) continue;
           const Imf::Attribute& a = it.attribute();
           if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a)) image.attributes.push_back({it.name(), s->value()});
           else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&a)) image.attributes.push_back({it.name(), i->value()});

@@ -30,7 +30,7 @@ std::vector<uint32_t> ids_of(const std::vector<std::string>& names) {
 std::vector<uint32_t> object_cryptomatte_ids(const SceneDesc& scene) { return ids_of(object_names(scene)); }
 std::vector<uint32_t> material_cryptomatte_ids(const SceneDesc& scene) { return ids_of(material_names(scene)); }
 
-void add_render_layers(const Film& film, const SceneDesc& scene, const LayerOptions& options, ExrImage& image) {
+void add_render_layers(const Film& film, const SceneDesc* scene, const LayerOptions& options, ExrImage& image) {
   const int w = film.width(), h = film.height();
   const size_t n = size_t(w) * size_t(h);
   const AovSet& aovs = film.aovs();
@@ -86,12 +86,13 @@ void add_render_layers(const Film& film, const SceneDesc& scene, const LayerOpti
 
   std::vector<uint64_t> samples(n);
   for (size_t i = 0; i < n; ++i) samples[i] = uint64_t(counts[i]);
-  auto cryptomatte = [&](const char* layer, const std::vector<PixelIdCounts>& ids, const std::vector<std::string>& names) {
+  auto cryptomatte = [&](const char* layer, const std::vector<PixelIdCounts>& ids, auto names) {
     for (ExrChannel& c : cryptomatte_channels(layer, ids, samples, options.cryptomatte_ranks)) image.channels.push_back(std::move(c));
-    for (ExrAttribute& a : cryptomatte_attributes(layer, names)) image.attributes.push_back(std::move(a));
+    if (scene)
+      for (ExrAttribute& a : cryptomatte_attributes(layer, names(*scene))) image.attributes.push_back(std::move(a));
   };
-  if (aovs.has(Aov::CryptoObject)) cryptomatte("CryptoObject", film.crypto_objects(), object_names(scene));
-  if (aovs.has(Aov::CryptoMaterial)) cryptomatte("CryptoMaterial", film.crypto_materials(), material_names(scene));
+  if (aovs.has(Aov::CryptoObject)) cryptomatte("CryptoObject", film.crypto_objects(), object_names);
+  if (aovs.has(Aov::CryptoMaterial)) cryptomatte("CryptoMaterial", film.crypto_materials(), material_names);
 }
 
 }  // namespace prism

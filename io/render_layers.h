@@ -21,7 +21,8 @@ struct LayerOptions {
 // variance .R/G/B; spp.V; object_id.V and material_id.V (the nearest hit's index as a float, -1
 // where nothing was hit); CryptoObjectNN and CryptoMaterialNN .R/G/B/A. An spp layer is also
 // written whenever pixels have different counts. Attributes: the Cryptomatte manifests.
-void add_render_layers(const Film& film, const SceneDesc& scene, const LayerOptions& options, ExrImage& image);
+// With a null scene the Cryptomatte manifests are left to the caller (prism merge copies them).
+void add_render_layers(const Film& film, const SceneDesc* scene, const LayerOptions& options, ExrImage& image);
 
 // Cryptomatte ids of every object and material (SceneDesc::object_name, material_name), for
 // Film::set_cryptomatte_ids.

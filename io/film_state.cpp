@@ -1,0 +1,185 @@
+#include "io/film_state.h"
+
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+
+#include "io/cryptomatte.h"
+#include "io/errors.h"
+
+namespace prism {
+namespace {
+
+constexpr const char* kPrefix = "prism.state.";
+
+// The doubles of one pixel, in a fixed order: sum RGBA, squared sums RGB, count, AOV sums.
+int doubles_per_pixel(const Film& film) { return 8 + film.average_slots(); }
+
+void pixel_doubles(const Film& film, int x, int y, double* out) {
+  const Film::Pixel& p = film.pixel(x, y);
+  for (int c = 0; c < 4; ++c) out[c] = p.sum[c];
+  for (int c = 0; c < 3; ++c) out[4 + c] = p.sum_sq[c];
+  out[7] = std::bit_cast<double>(p.count);
+  for (int k = 0; k < film.average_slots(); ++k) out[8 + k] = film.average_sums(x, y)[k];
+}
+
+void set_pixel_doubles(Film& film, int x, int y, const double* in) {
+  Film::Pixel& p = film.pixel(x, y);
+  for (int c = 0; c < 4; ++c) p.sum[c] = in[c];
+  for (int c = 0; c < 3; ++c) p.sum_sq[c] = in[4 + c];
+  p.count = std::bit_cast<uint64_t>(in[7]);
+  for (int k = 0; k < film.average_slots(); ++k) film.average_sums(x, y)[k] = in[8 + k];
+}
+
+const ExrChannel& require(const ExrImage& image, const std::string& name, const std::string& path) {
+  const ExrChannel* c = image.find(name);
+  if (!c) throw InputError(path, "channel " + name, "missing: the file was not written by a prism render with these layers");
+  return *c;
+}
+
+AovSet aovs_of(const ExrImage& image, const std::string& path) {
+  const ExrAttribute* a = image.attribute("prism/aovs");
+  if (!a) return {};
+  const std::string* list = std::get_if<std::string>(&a->second);
+  try {
+    return list ? parse_aovs(*list) : AovSet{};
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path, "prism/aovs", e.what());
+  }
+}
+
+}  // namespace
+
+void add_film_state(const Film& film, ExrImage& image) {
+  const int w = film.width(), h = film.height(), k = doubles_per_pixel(film);
+  const size_t n = size_t(w) * size_t(h);
+  std::vector<std::vector<uint32_t>> halves(size_t(2 * k), std::vector<uint32_t>(n));
+  std::vector<double> d(static_cast<size_t>(k));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      pixel_doubles(film, x, y, d.data());
+      for (int j = 0; j < k; ++j) {
+        const uint64_t bits = std::bit_cast<uint64_t>(d[size_t(j)]);
+        halves[size_t(2 * j)][i] = uint32_t(bits >> 32);
+        halves[size_t(2 * j + 1)][i] = uint32_t(bits);
+      }
+    }
+  for (int j = 0; j < k; ++j) {
+    image.channels.push_back({kPrefix + std::to_string(j) + "hi", ExrPixelType::Uint, {}, std::move(halves[size_t(2 * j)])});
+    image.channels.push_back({kPrefix + std::to_string(j) + "lo", ExrPixelType::Uint, {}, std::move(halves[size_t(2 * j + 1)])});
+  }
+  if (film.tracks_nearest()) {
+    std::vector<uint32_t> depth(n), object(n), material(n);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        depth[i] = std::bit_cast<uint32_t>(film.nearest_depth(x, y));
+        object[i] = std::bit_cast<uint32_t>(film.nearest_object(x, y));
+        material[i] = std::bit_cast<uint32_t>(film.nearest_material(x, y));
+      }
+    image.channels.push_back({std::string(kPrefix) + "nearestDepth", ExrPixelType::Uint, {}, std::move(depth)});
+    image.channels.push_back({std::string(kPrefix) + "nearestObject", ExrPixelType::Uint, {}, std::move(object)});
+    image.channels.push_back({std::string(kPrefix) + "nearestMaterial", ExrPixelType::Uint, {}, std::move(material)});
+  }
+}
+
+Film film_from_image(const ExrImage& image, const std::string& path) {
+  const int w = image.data.width(), h = image.data.height();
+  Film film(w, h, aovs_of(image, path));
+  const size_t n = size_t(w) * size_t(h);
+  const bool exact = image.find(std::string(kPrefix) + "0hi") != nullptr;
+  std::vector<uint64_t> counts(n);
+  if (exact) {
+    const int k = doubles_per_pixel(film);
+    std::vector<const ExrChannel*> channels;
+    for (int j = 0; j < k; ++j)
+      for (const char* half : {"hi", "lo"})
+        channels.push_back(&require(image, kPrefix + std::to_string(j) + half, path));
+    std::vector<double> d(static_cast<size_t>(k));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        for (int j = 0; j < k; ++j)
+          d[size_t(j)] = std::bit_cast<double>(uint64_t(channels[size_t(2 * j)]->bits[i]) << 32 |
+                                               channels[size_t(2 * j + 1)]->bits[i]);
+        set_pixel_doubles(film, x, y, d.data());
+        counts[i] = film.sample_count(x, y);
+      }
+    if (film.tracks_nearest()) {
+      const ExrChannel& depth = require(image, std::string(kPrefix) + "nearestDepth", path);
+      const ExrChannel& object = require(image, std::string(kPrefix) + "nearestObject", path);
+      const ExrChannel& material = require(image, std::string(kPrefix) + "nearestMaterial", path);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const size_t i = size_t(y) * w + x;
+          film.nearest_depth(x, y) = std::bit_cast<float>(depth.bits[i]);
+          film.nearest_object(x, y) = std::bit_cast<int32_t>(object.bits[i]);
+          film.nearest_material(x, y) = std::bit_cast<int32_t>(material.bits[i]);
+        }
+    }
+  } else {
+    // Counts: the spp layer, else the uniform count the header records.
+    if (const ExrChannel* spp = image.find("spp.V")) {
+      for (size_t i = 0; i < n; ++i) counts[i] = uint64_t(spp->values[i]);
+    } else {
+      const ExrAttribute* a = image.attribute("prism/sppMax");
+      if (!a || !std::holds_alternative<int>(a->second))
+        throw InputError(path, "prism/sppMax", "missing: no spp layer or sample count in the header");
+      std::fill(counts.begin(), counts.end(), uint64_t(std::get<int>(a->second)));
+    }
+    const ExrChannel* rgba[4] = {&require(image, "R", path), &require(image, "G", path), &require(image, "B", path),
+                                 &require(image, "A", path)};
+    const ExrChannel* variance[3] = {image.find("variance.R"), image.find("variance.G"), image.find("variance.B")};
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        Film::Pixel& p = film.pixel(x, y);
+        const double count = double(counts[i]);
+        p.count = counts[i];
+        for (int c = 0; c < 4; ++c) p.sum[c] = double(rgba[c]->values[i]) * count;
+        // variance of the mean = (sum_sq - sum^2 / n) / ((n - 1) n), inverted; zero without a layer.
+        for (int c = 0; c < 3; ++c) {
+          const double v = variance[c] ? double(variance[c]->values[i]) : 0.0;
+          p.sum_sq[c] = (count > 0 ? p.sum[c] * p.sum[c] / count : 0.0) + v * count * std::max(count - 1.0, 0.0);
+        }
+      }
+    struct Layer {
+      Aov aov;
+      const char* name;
+      const char* components;
+    };
+    for (const Layer& l : {Layer{Aov::Albedo, "albedo", "RGB"}, Layer{Aov::Normal, "N", "XYZ"}, Layer{Aov::Position, "P", "XYZ"},
+                           Layer{Aov::Emission, "emission", "RGB"}, Layer{Aov::Direct, "direct", "RGB"},
+                           Layer{Aov::Indirect, "indirect", "RGB"}}) {
+      const int slot = film.average_slot(l.aov);
+      if (slot < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        const ExrChannel& ch = require(image, std::string(l.name) + "." + l.components[c], path);
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x)
+            film.average_sums(x, y)[slot + c] = double(ch.values[size_t(y) * w + x]) * double(counts[size_t(y) * w + x]);
+      }
+    }
+    if (film.tracks_nearest()) {
+      const ExrChannel* depth = image.find("Z");
+      const ExrChannel* object = image.find("object_id.V");
+      const ExrChannel* material = image.find("material_id.V");
+      for (size_t i = 0; i < n; ++i) {
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        if (depth) film.nearest_depth(x, y) = depth->values[i];
+        if (object) film.nearest_object(x, y) = int32_t(object->values[i]);
+        if (material) film.nearest_material(x, y) = int32_t(material->values[i]);
+      }
+    }
+  }
+  try {
+    if (film.aovs().has(Aov::CryptoObject)) film.crypto_objects() = cryptomatte_counts(image, "CryptoObject", counts);
+    if (film.aovs().has(Aov::CryptoMaterial)) film.crypto_materials() = cryptomatte_counts(image, "CryptoMaterial", counts);
+  } catch (const std::exception& e) {
+    throw InputError(path, "Cryptomatte layers", e.what());
+  }
+  return film;
+}
+
+}  // namespace prism

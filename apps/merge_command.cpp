@@ -24,10 +24,13 @@ struct Part {
   uint64_t first_sample = 0;
 };
 
-uint64_t first_sample_of(const ExrImage& image) {
+uint64_t first_sample_of(const ExrImage& image, const std::string& path) {
   const ExrAttribute* a = image.attribute("prism/firstSample");
   const std::string* s = a ? std::get_if<std::string>(&a->second) : nullptr;
-  return s ? std::stoull(*s) : 0;
+  if (!s) return 0;
+  if (s->empty() || s->find_first_not_of("0123456789") != std::string::npos || s->size() > 19)
+    throw InputError(path, "prism/firstSample", "'" + *s + "' is not a sample index");
+  return std::stoull(*s);
 }
 
 std::string attribute_text(const ExrImage& image, const std::string& name) {
@@ -45,7 +48,7 @@ int merge(const MergeOptions& o) {
   for (const std::string& path : o.parts) parts.push_back({path, read_exr(path), 0});
   const ExrImage& first = parts.front().image;
   for (Part& p : parts) {
-    p.first_sample = first_sample_of(p.image);
+    p.first_sample = first_sample_of(p.image, p.path);
     if (!(p.image.display == first.display))
       throw InputError(p.path, "displayWindow", "differs from " + parts.front().path + "'s: parts of one render share it");
     // Parts of one render agree on everything but their slice and window.

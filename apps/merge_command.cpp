@@ -98,24 +98,7 @@ int merge(const MergeOptions& o) {
 
   // Stitch the windows into one film.
   Film merged(bounds.width(), bounds.height(), windows.front().second.aovs());
-  for (const auto& [w, film] : windows) {
-    Film placed(bounds.width(), bounds.height(), film.aovs());
-    for (int y = 0; y < w.height(); ++y)
-      for (int x = 0; x < w.width(); ++x) {
-        const int X = x + w.x0 - bounds.x0, Y = y + w.y0 - bounds.y0;
-        placed.pixel(X, Y) = film.pixel(x, y);
-        std::copy_n(film.average_sums(x, y), film.average_slots(), placed.average_sums(X, Y));
-        if (film.tracks_nearest()) {
-          placed.nearest_depth(X, Y) = film.nearest_depth(x, y);
-          placed.nearest_object(X, Y) = film.nearest_object(x, y);
-          placed.nearest_material(X, Y) = film.nearest_material(x, y);
-        }
-        const size_t from = size_t(y) * w.width() + x, to = size_t(Y) * bounds.width() + X;
-        if (!film.crypto_objects().empty()) placed.crypto_objects()[to] = film.crypto_objects()[from];
-        if (!film.crypto_materials().empty()) placed.crypto_materials()[to] = film.crypto_materials()[from];
-      }
-    merged.merge(placed);
-  }
+  for (const auto& [w, film] : windows) merged.merge(film, w.x0 - bounds.x0, w.y0 - bounds.y0);
 
   ExrImage out;
   out.display = first.display;

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,7 +21,7 @@ enum class Aov : uint32_t {
   Variance,    // per-channel variance of the beauty's mean
   Spp,         // samples per pixel
   ObjectId,    // index of the nearest first-hit object (-1: none)
-  MaterialId,  // index of the nearest first-hit material (-1: none, -2: the default material)
+  MaterialId,  // index of the nearest first-hit material (-1: none; the default material after the scene's)
   CryptoObject,    // Cryptomatte for objects (node names)
   CryptoMaterial,  // Cryptomatte for materials (material names)
   Count

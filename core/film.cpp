@@ -55,15 +55,7 @@ void Film::add_aov_sample(int x, int y, const AovSample& s, float depth) {
     }
   }
   const size_t i = size_t(y) * width_ + x;
-  // The nearest hit is the smallest (depth, object, material): at equal depth the smaller ids,
-  // so a render split into parts and merged keeps the same one.
-  if (tracks_nearest() && s.hit &&
-      std::tuple(depth, s.object, s.material) <
-          std::tuple(nearest_depth_[i], nearest_object_[i], nearest_material_[i])) {
-    nearest_depth_[i] = depth;
-    nearest_object_[i] = s.object;
-    nearest_material_[i] = s.material;
-  }
+  if (tracks_nearest() && s.hit) keep_nearer(i, depth, s.object, s.material);
   if (s.hit && !crypto_objects_.empty() && size_t(s.object) < object_ids_.size())
     add_id_sample(crypto_objects_[i], object_ids_[size_t(s.object)]);
   if (s.hit && !crypto_materials_.empty() && size_t(s.material) < material_ids_.size())
@@ -113,31 +105,36 @@ std::vector<float> Film::resolve_average(Aov aov, int c) const {
   return out;
 }
 
-void Film::merge(const Film& other) {
-  if (other.width_ != width_ || other.height_ != height_ || !(other.aovs_ == aovs_))
-    throw std::invalid_argument("films of different sizes or AOVs cannot be merged");
-  for (size_t i = 0; i < pixels_.size(); ++i) {
-    Pixel& a = pixels_[i];
-    const Pixel& b = other.pixels_[i];
-    for (int c = 0; c < 4; ++c) a.sum[c] += b.sum[c];
-    for (int c = 0; c < 3; ++c) a.sum_sq[c] += b.sum_sq[c];
-    a.count += b.count;
-    // The same order as add_aov_sample: the result does not depend on how samples were split.
-    if (tracks_nearest()) {
-      if (std::tuple(other.nearest_depth_[i], other.nearest_object_[i], other.nearest_material_[i]) <
-          std::tuple(nearest_depth_[i], nearest_object_[i], nearest_material_[i])) {
-        nearest_depth_[i] = other.nearest_depth_[i];
-        nearest_object_[i] = other.nearest_object_[i];
-        nearest_material_[i] = other.nearest_material_[i];
+void Film::keep_nearer(size_t i, float depth, int32_t object, int32_t material) {
+  // The nearest hit is the smallest (depth, object, material): at equal depth the smaller ids, so
+  // the result does not depend on how the samples were split into parts and merged.
+  if (std::tuple(depth, object, material) < std::tuple(nearest_depth_[i], nearest_object_[i], nearest_material_[i])) {
+    nearest_depth_[i] = depth;
+    nearest_object_[i] = object;
+    nearest_material_[i] = material;
+  }
+}
+
+void Film::merge(const Film& other, int x0, int y0) {
+  if (!(other.aovs_ == aovs_) || x0 < 0 || y0 < 0 || x0 + other.width_ > width_ || y0 + other.height_ > height_)
+    throw std::invalid_argument("a film merges only into a film with its AOVs that contains its window");
+  for (int y = 0; y < other.height_; ++y)
+    for (int x = 0; x < other.width_; ++x) {
+      const size_t j = size_t(y) * other.width_ + x, i = size_t(y + y0) * width_ + size_t(x + x0);
+      Pixel& a = pixels_[i];
+      const Pixel& b = other.pixels_[j];
+      for (int c = 0; c < 4; ++c) a.sum[c] += b.sum[c];
+      for (int c = 0; c < 3; ++c) a.sum_sq[c] += b.sum_sq[c];
+      a.count += b.count;
+      for (int k = 0; k < average_stride_; ++k)
+        average_sums_[i * size_t(average_stride_) + size_t(k)] += other.average_sums_[j * size_t(average_stride_) + size_t(k)];
+      if (tracks_nearest()) keep_nearer(i, other.nearest_depth_[j], other.nearest_object_[j], other.nearest_material_[j]);
+      for (auto [mine, theirs] : {std::pair(&crypto_objects_, &other.crypto_objects_),
+                                  std::pair(&crypto_materials_, &other.crypto_materials_)}) {
+        if (mine->empty()) continue;
+        for (const IdCount& c : (*theirs)[j]) add_id_count((*mine)[i], c.id, c.count);
       }
     }
-    for (auto [mine, theirs] : {std::pair(&crypto_objects_, &other.crypto_objects_),
-                                std::pair(&crypto_materials_, &other.crypto_materials_)}) {
-      if (mine->empty()) continue;
-      for (const IdCount& c : (*theirs)[i]) add_id_count((*mine)[i], c.id, c.count);
-    }
-  }
-  for (size_t i = 0; i < average_sums_.size(); ++i) average_sums_[i] += other.average_sums_[i];
 }
 
 }  // namespace prism

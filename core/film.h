@@ -86,12 +86,15 @@ class Film {
   std::vector<PixelIdCounts>& crypto_materials() { return crypto_materials_; }
   const std::vector<PixelIdCounts>& crypto_materials() const { return crypto_materials_; }
 
-  // Adds another film's samples of the same pixels (disjoint sample slices of one render):
-  // sums and counts add, the nearer hit wins, Cryptomatte counts add. Throws
-  // std::invalid_argument when the sizes or AOVs differ.
-  void merge(const Film& other);
+  // Adds another film's samples into the pixels it covers, its (0, 0) at (x0, y0) here: a
+  // disjoint sample slice of the same window, or a crop placed into a larger film. Sums and counts
+  // add, the nearer hit wins, Cryptomatte counts add. Throws std::invalid_argument when the AOVs
+  // differ or the other film does not fit.
+  void merge(const Film& other, int x0 = 0, int y0 = 0);
 
  private:
+  void keep_nearer(size_t pixel, float depth, int32_t object, int32_t material);
+
   int width_, height_;
   AovSet aovs_;
   std::vector<Pixel> pixels_;

@@ -6,6 +6,7 @@
 
 #include "io/cryptomatte.h"
 #include "io/errors.h"
+#include "io/render_layers.h"
 
 namespace prism {
 namespace {
@@ -144,18 +145,11 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
           p.sum_sq[c] = (count > 0 ? p.sum[c] * p.sum[c] / count : 0.0) + v * count * std::max(count - 1.0, 0.0);
         }
       }
-    struct Layer {
-      Aov aov;
-      const char* name;
-      const char* components;
-    };
-    for (const Layer& l : {Layer{Aov::Albedo, "albedo", "RGB"}, Layer{Aov::Normal, "N", "XYZ"}, Layer{Aov::Position, "P", "XYZ"},
-                           Layer{Aov::Emission, "emission", "RGB"}, Layer{Aov::Direct, "direct", "RGB"},
-                           Layer{Aov::Indirect, "indirect", "RGB"}}) {
+    for (const AveragedLayer& l : kAveragedLayers) {
       const int slot = film.average_slot(l.aov);
       if (slot < 0) continue;
       for (int c = 0; c < 3; ++c) {
-        const ExrChannel& ch = require(image, std::string(l.name) + "." + l.components[c], path);
+        const ExrChannel& ch = require(image, std::string(l.layer) + "." + l.components[c], path);
         for (int y = 0; y < h; ++y)
           for (int x = 0; x < w; ++x)
             film.average_sums(x, y)[slot + c] = double(ch.values[size_t(y) * w + x]) * double(counts[size_t(y) * w + x]);

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "io/cryptomatte.h"
+#include "io/exr_writer.h"
 
 namespace prism {
 namespace {
@@ -37,21 +38,8 @@ void add_render_layers(const Film& film, const SceneDesc* scene, const LayerOpti
   auto add = [&](std::string name, ExrPixelType type, std::vector<float> values) {
     image.channels.push_back({std::move(name), type, std::move(values), {}});
   };
-  const std::vector<float> rgba = film.resolve_rgba();
-  for (int c = 0; c < 4; ++c) {
-    std::vector<float> v(n);
-    for (size_t i = 0; i < n; ++i) v[i] = rgba[4 * i + size_t(c)];
-    add(std::string(1, "RGBA"[c]), options.beauty, std::move(v));
-  }
-  struct Averaged {
-    Aov aov;
-    const char* layer;
-    const char* components;
-    bool light;
-  };
-  for (const Averaged& a : {Averaged{Aov::Albedo, "albedo", "RGB", false}, Averaged{Aov::Normal, "N", "XYZ", false},
-                            Averaged{Aov::Position, "P", "XYZ", false}, Averaged{Aov::Emission, "emission", "RGB", true},
-                            Averaged{Aov::Direct, "direct", "RGB", true}, Averaged{Aov::Indirect, "indirect", "RGB", true}}) {
+  for (ExrChannel& c : rgba_channels(w, h, film.resolve_rgba(), options.beauty)) image.channels.push_back(std::move(c));
+  for (const AveragedLayer& a : kAveragedLayers) {
     if (!aovs.has(a.aov)) continue;
     for (int c = 0; c < 3; ++c)
       add(std::string(a.layer) + "." + a.components[c], a.light ? options.beauty : ExrPixelType::Float,

@@ -10,6 +10,19 @@
 
 namespace prism {
 
+// The layer each averaged AOV (Film::kAveraged) is written as: its name, its three channel
+// suffixes, and whether it holds light (and so takes the beauty's pixel type).
+struct AveragedLayer {
+  Aov aov;
+  const char* layer;
+  const char* components;
+  bool light;
+};
+inline constexpr AveragedLayer kAveragedLayers[] = {
+    {Aov::Albedo, "albedo", "RGB", false},     {Aov::Normal, "N", "XYZ", false},
+    {Aov::Position, "P", "XYZ", false},        {Aov::Emission, "emission", "RGB", true},
+    {Aov::Direct, "direct", "RGB", true},      {Aov::Indirect, "indirect", "RGB", true}};
+
 struct LayerOptions {
   // The beauty (R, G, B, A) and the light layers (emission, direct, indirect). Data layers
   // (albedo, N, P, Z, variance, spp, ids, Cryptomatte) are always float.

@@ -10,6 +10,7 @@ enum ExitCode : int {
   kExitInput = 3,     // a scene, job file or image that cannot be used
   kExitOutput = 4,    // an output that cannot be written
   kExitThreshold = 5, // `prism compare --threshold`: the image misses it
+  kExitStopped = 6,   // a render stopped by SIGINT or SIGTERM: its output holds what was rendered, resumable
 };
 
 }  // namespace prism

@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success, 1 internal error, 2 usage error, 3 bad input (scene, job file, image),\n"
-      "4 output not writable, 5 compare: the image misses --threshold.\n"
+      "4 output not writable, 5 compare: the image misses --threshold, 6 render stopped by SIGINT/SIGTERM (its\n"
+      "output holds the samples so far; continue it with --resume).\n"
       "Run 'prism COMMAND --help' for the options of a command.");
 
   RenderOptions render;
@@ -92,6 +93,16 @@ int main(int argc, char** argv) {
                   "Render sample indices START .. START+COUNT-1 of every pixel (instead of --spp): a slice of a "
                   "render that 'prism merge' combines with the others")
       ->expected(2);
+  cmd->add_option("--checkpoint", render.checkpoint,
+                  "Write the image so far to the output about this often (e.g. 60, 30s, 5m), resumable with --resume; "
+                  "the final image is the same")
+      ->type_name("SECONDS");
+  cmd->add_option("--resume", render.resume,
+                  "Continue a stopped or checkpointed render from its EXR (same scene and settings; --spp may be "
+                  "raised): the result has the bits of an uninterrupted render");
+  cmd->add_option("--progress", render.progress,
+                  "Progress report: bar (default; on a terminal), plain ('progress 42.0%' lines on stdout, for farm "
+                  "managers) or none");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 
   CompareOptions compare;

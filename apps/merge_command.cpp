@@ -13,6 +13,7 @@
 #include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "io/film_state.h"
+#include "io/render_identity.h"
 #include "io/render_layers.h"
 
 namespace prism {
@@ -33,14 +34,6 @@ uint64_t first_sample_of(const ExrImage& image, const std::string& path) {
   return std::stoull(*s);
 }
 
-std::string attribute_text(const ExrImage& image, const std::string& name) {
-  const ExrAttribute* a = image.attribute(name);
-  if (!a) return "";
-  if (const auto* s = std::get_if<std::string>(&a->second)) return *s;
-  if (const auto* i = std::get_if<int>(&a->second)) return std::to_string(*i);
-  return "?";
-}
-
 int merge(const MergeOptions& o) {
   if (o.parts.empty()) throw UsageError("merge: give the partial renders to merge");
   check_output_path(o.output);
@@ -49,13 +42,8 @@ int merge(const MergeOptions& o) {
   const ExrImage& first = parts.front().image;
   for (Part& p : parts) {
     p.first_sample = first_sample_of(p.image, p.path);
-    if (!(p.image.display == first.display))
-      throw InputError(p.path, "displayWindow", "differs from " + parts.front().path + "'s: parts of one render share it");
     // Parts of one render agree on everything but their slice and window.
-    for (const char* key : {"prism/aovs", "prism/seed", "prism/sampler", "prism/integrator", "prism/scene", "prism/camera"})
-      if (attribute_text(p.image, key) != attribute_text(first, key))
-        throw InputError(p.path, key, "'" + attribute_text(p.image, key) + "' differs from " + parts.front().path + "'s '" +
-                                          attribute_text(first, key) + "': not a part of the same render");
+    check_same_render(p.image, p.path, first, parts.front().path);
   }
 
   // Parts with the same data window are sample slices of it: their films add. Different windows

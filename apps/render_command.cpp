@@ -10,15 +10,19 @@
 #include "apps/exit_codes.h"
 #include "apps/progress_bar.h"
 #include "apps/render_setup.h"
+#include "apps/stop_signals.h"
 #include "core/camera.h"
 #include "core/renderer.h"
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
+#include "io/duration_text.h"
+#include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "io/film_state.h"
 #include "io/png_writer.h"
 #include "io/camera_attributes.h"
 #include "io/render_attributes.h"
+#include "io/render_identity.h"
 #include "io/render_layers.h"
 
 namespace prism {
@@ -34,14 +38,59 @@ std::string spp_summary(const RenderStats& stats) {
   return fmt::format("{}-{} (mean {:.1f})", stats.spp_min, stats.spp_max, stats.spp_mean);
 }
 
-int render(const RenderOptions& o) {
+// Everything in the header that describes the render rather than its pixels.
+std::vector<ExrAttribute> header_attributes(const RenderOptions& o, const PreparedRender& p, const Camera& camera,
+                                            const RenderStats& stats) {
+  std::vector<ExrAttribute> a = render_attributes(p.settings, stats);
+  for (ExrAttribute& c : camera_attributes(camera)) a.push_back(std::move(c));
+  a.push_back({"prism/version", std::string(PRISM_VERSION)});
+  a.push_back({"prism/scene", o.scene});
+  a.push_back({"prism/camera", p.camera.name});
+  const SceneDesc& desc = p.scene->desc();
+  if (desc.environment.present)
+    a.push_back({"prism/environment", desc.environment.source.empty() ? std::string("constant") : desc.environment.source});
+  return a;
+}
+
+// The film of a stopped render or checkpoint to continue: it must hold its exact state and have
+// been rendered with the settings that decide the pixels.
+Film resumed_film(const std::string& path, const ExrImage& expected) {
+  const ExrImage image = read_exr(path);
+  if (!has_film_state(image))
+    throw InputError(path, "prism.state channels",
+                     "missing: only renders that were stopped, checkpointed (--checkpoint) or resumed can be continued");
+  check_same_render(image, path, expected, "this render");
+  if (!(image.data == expected.data))
+    throw InputError(path, "dataWindow", "differs from this render's crop: resume with the same --crop");
+  for (const char* key : {"prism/firstSample", "prism/budget"})
+    if (attribute_text(image, key) != attribute_text(expected, key))
+      throw InputError(path, key, fmt::format("'{}' differs from this render's '{}'", attribute_text(image, key),
+                                              attribute_text(expected, key)));
+  return film_from_image(image, path);
+}
+
+int render(const RenderOptions& o, const BatchContext& batch) {
   PreparedRender p = prepare_render(o);
-  const RenderSettings& settings = p.settings;
+  RenderSettings& settings = p.settings;
   const std::string output = o.output ? *o.output : (p.job && p.job->output ? *p.job->output : default_output(o.scene));
   std::optional<std::string> preview = o.preview;
   if (!preview && p.job && p.job->preview) preview = p.job->preview;
   check_output_path(output);
   if (preview) check_output_path(*preview);
+  std::optional<double> checkpoint = p.job ? p.job->checkpoint_seconds : std::nullopt;
+  if (o.checkpoint) {
+    checkpoint = parse_duration(*o.checkpoint);
+    if (!checkpoint || !(*checkpoint > 0))
+      throw UsageError("--checkpoint: expected a duration such as 60, 30s or 5m, got '" + *o.checkpoint + "'");
+  }
+  ProgressStyle progress_style = o.quiet ? ProgressStyle::None : ProgressStyle::Bar;
+  if (o.progress) {
+    const std::optional<ProgressStyle> style = parse_progress_style(*o.progress);
+    if (!style) throw UsageError("--progress: expected bar, plain or none, got '" + *o.progress + "'");
+    progress_style = *style;
+  }
+  // A fixed-spp render with checkpoints runs in passes of about the checkpoint period (same bits).
+  if (checkpoint) settings.pass_seconds = *checkpoint;
 
   std::optional<tbb::global_control> limit;
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
@@ -51,43 +100,74 @@ int render(const RenderOptions& o) {
   const Camera camera(p.camera, settings.width, settings.height);
   const PixelWindow full{0, 0, settings.width, settings.height};
   const PixelWindow window = settings.crop.empty() ? full : settings.crop;
+  const std::optional<std::string> job_type = p.job ? p.job->pixel_type : std::nullopt;
+  const std::string pixel_type = o.pixel_type ? *o.pixel_type : job_type.value_or("half");
+  const std::optional<std::string> job_compression = p.job ? p.job->compression : std::nullopt;
+  // Renders that can be continued or merged carry their film exactly.
+  const bool sliced = !o.sample_range.empty() || (p.job && p.job->settings.first_sample);
+  const bool keep_state = sliced || checkpoint || o.resume;
+
+  // The EXR of the film as it stands; `status` says whether the render is "complete", a
+  // "checkpoint" of one in progress, or "stopped".
+  auto image_of = [&](const Film& film, const RenderStats& stats, const std::string& status) {
+    ExrImage image;
+    image.display = full;
+    image.data = window;
+    image.attributes = header_attributes(o, p, camera, stats);
+    image.attributes.push_back({"prism/status", status});
+    LayerOptions layers;
+    layers.beauty = pixel_type == "float" ? ExrPixelType::Float : ExrPixelType::Half;
+    add_render_layers(film, &scene.desc(), layers, image);
+    if (keep_state || status != "complete") add_film_state(film, image);
+    image.compression = *parse_exr_compression(o.compression ? *o.compression : job_compression.value_or("zip"));
+    image.multipart = o.multipart || (p.job && p.job->multipart.value_or(false));
+    return image;
+  };
+
   Film film(window.width(), window.height(), settings.aovs);
+  if (o.resume) film = resumed_film(*o.resume, image_of(film, RenderStats{}, "complete"));
   if (settings.aovs.has(Aov::CryptoObject) || settings.aovs.has(Aov::CryptoMaterial))
     film.set_cryptomatte_ids(object_cryptomatte_ids(scene.desc()), material_cryptomatte_ids(scene.desc()));
+  uint64_t resumed_samples = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) resumed_samples += film.sample_count(x, y);
+
   RenderProgress progress;
   RenderStats stats;
   {
+    std::optional<StopSignals> signals;  // a batch has its own handler, which sets batch.stop
+    if (batch.stop) progress.also_stop = batch.stop;
+    else signals.emplace(progress.stop);
     std::optional<ProgressBar> bar;
-    if (!o.quiet) bar.emplace(progress.samples_done, progress.samples_total, "rendering");
-    stats = prism::render(scene, camera, *integrator, settings, film, &progress);
+    if (progress_style != ProgressStyle::None)
+      bar.emplace(progress.samples_done, progress.samples_total, "rendering", progress_style, batch.position);
+    double last_checkpoint = 0;
+    PassObserver write_checkpoint;
+    if (checkpoint)
+      write_checkpoint = [&](const Film& f, const RenderStats& so_far) {
+        // Passes last about one period; under a time or noise budget they grow, so write at most
+        // about twice a period.
+        if (so_far.seconds - last_checkpoint < 0.5 * *checkpoint) return;
+        last_checkpoint = so_far.seconds;
+        write_exr(output, image_of(f, so_far, "checkpoint"));
+        if (preview) write_png_preview(*preview, window.width(), window.height(), f.resolve_rgba());
+      };
+    stats = prism::render(scene, camera, *integrator, settings, film, &progress, write_checkpoint);
   }
 
-  ExrImage image;
-  image.display = full;
-  image.data = window;
-  image.attributes = render_attributes(settings, stats);
-  for (ExrAttribute& a : camera_attributes(camera)) image.attributes.push_back(std::move(a));
-  image.attributes.push_back({"prism/version", std::string(PRISM_VERSION)});
-  image.attributes.push_back({"prism/scene", o.scene});
-  image.attributes.push_back({"prism/camera", p.camera.name});
-  if (scene.desc().environment.present) {
-    image.attributes.push_back({"prism/environment", scene.desc().environment.source.empty()
-                                                         ? std::string("constant")
-                                                         : scene.desc().environment.source});
-  }
-  const std::optional<std::string> job_type = p.job ? p.job->pixel_type : std::nullopt;
-  const std::string pixel_type = o.pixel_type ? *o.pixel_type : job_type.value_or("half");
-  LayerOptions layers;
-  layers.beauty = pixel_type == "float" ? ExrPixelType::Float : ExrPixelType::Half;
-  add_render_layers(film, &scene.desc(), layers, image);
-  // A sample slice is a part of a render: it carries its film exactly, for prism merge.
-  if (!o.sample_range.empty() || (p.job && p.job->settings.first_sample)) add_film_state(film, image);
-  const std::optional<std::string> job_compression = p.job ? p.job->compression : std::nullopt;
-  image.compression = *parse_exr_compression(o.compression ? *o.compression : job_compression.value_or("zip"));
-  image.multipart = o.multipart || (p.job && p.job->multipart.value_or(false));
-  const ExrWriteReport written = write_exr(output, image);
+  const std::string status = stats.stopped ? "stopped" : "complete";
+  const ExrWriteReport written = write_exr(output, image_of(film, stats, status));
   if (preview) write_png_preview(*preview, window.width(), window.height(), film.resolve_rgba());
 
+  if (stats.stopped) {
+    const int signal = batch.stop ? 0 : StopSignals::received();
+    fmt::print(stderr,
+               "prism: stopped{}{} after {} samples; {} holds every pixel's samples so far ({} spp); continue with "
+               "--resume {}\n",
+               signal ? " by " : "", signal ? StopSignals::name(signal) : "", si(double(resumed_samples + stats.samples)),
+               output, spp_summary(stats), output);
+    return kExitStopped;
+  }
   if (!o.quiet) {
     if (written.nonfinite > 0)
       fmt::print(stderr, "prism: warning: {}: {} pixel values overflowed float and were clamped\n", output, written.nonfinite);
@@ -109,14 +189,15 @@ int render(const RenderOptions& o) {
                      ? fmt::format(", {:.1f}% of pixels under the noise target {}", 100 * stats.converged_fraction,
                                    settings.noise_target)
                      : std::string());
+    if (o.resume) fmt::print("continued {} with {} samples it already had\n", *o.resume, si(double(resumed_samples)));
   }
   return kExitOk;
 }
 
 }  // namespace
 
-int run_render(const RenderOptions& options) {
-  return run_reporting_errors([&] { return render(options); });
+int run_render(const RenderOptions& options, const BatchContext& batch) {
+  return run_reporting_errors([&] { return render(options, batch); });
 }
 
 }  // namespace prism

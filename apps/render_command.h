@@ -1,11 +1,13 @@
 // The `prism render` command: options as parsed from the command line, and running them.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "apps/progress_bar.h"
 #include "core/render_settings.h"
 
 namespace prism {
@@ -22,13 +24,25 @@ struct RenderOptions {
   std::vector<uint64_t> sample_range;      // first count
   std::optional<std::string> resolution;  // "WxH", parsed into settings
   std::optional<std::string> time;        // "30s", "2m", parsed into settings
+  std::optional<std::string> checkpoint;  // "60", "5m": how often to write the progressive image
+  std::optional<std::string> resume;      // a stopped render's EXR to continue
+  std::optional<std::string> progress;    // "bar", "plain" or "none"
   RenderSettingsOverride settings;
   std::optional<std::string> env;  // a map path, or "R,G,B" / "V" for a constant sky
   std::optional<float> env_intensity, env_rotation;
   bool quiet = false;
 };
 
+// How a render runs inside a batch: the batch's stop flag (set by its signal handler) and where
+// the render stands in it.
+struct BatchContext {
+  std::atomic<bool>* stop = nullptr;
+  BatchPosition position;
+};
+
 // Renders and writes the outputs; returns the process exit code and reports errors on stderr.
-int run_render(const RenderOptions& options);
+// Without a batch, SIGINT and SIGTERM stop the render, which writes what it has (resumable) and
+// returns kExitStopped.
+int run_render(const RenderOptions& options, const BatchContext& batch = {});
 
 }  // namespace prism

@@ -27,6 +27,8 @@ struct RenderSettings {
   uint64_t seed = 0;
   int tile_size = 16;
   int threads = 0;             // 0 = all hardware threads
+  double pass_seconds = 0;     // > 0: split a fixed-spp render into passes of about this long (the
+                               // bits do not change), so a checkpoint can be written between them
   std::string integrator = "path";
   std::string camera;          // name or index; "" = the first in node order
   // The part of the image rendered (a crop); empty = all of it.

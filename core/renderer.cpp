@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -17,7 +18,8 @@
 namespace prism {
 
 RenderStats render(const Scene& scene, const Camera& world_camera, const Integrator& integrator,
-                   const RenderSettings& settings, Film& film, RenderProgress* progress) {
+                   const RenderSettings& settings, Film& film, RenderProgress* progress,
+                   const PassObserver& after_pass) {
   const Camera camera = world_camera.relative_to(scene.origin());  // rays in the scene's coordinates
   const int width = film.width(), height = film.height();
   // Film pixel (x, y) is image pixel (x + x0, y + y0): a crop renders the pixels a full render would.
@@ -33,6 +35,8 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
   std::vector<uint32_t> target;  // each pixel's sample count at the end of the current pass
   std::atomic<uint64_t> samples{0};
 
+  auto stopping = [&] { return progress && progress->stop_requested(); };
+
   auto render_tile = [&](int tile_index) {
     const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
@@ -42,10 +46,9 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     AovSample aov;  // filled only when the film has AOVs
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        if (progress && progress->stop.load(std::memory_order_relaxed)) break;
         const uint64_t end = target[size_t(y) * width + x];
         const int px = x + x_offset, py = y + y_offset;
-        for (uint64_t s = film.sample_count(x, y); s < end; ++s) {
+        for (uint64_t s = film.sample_count(x, y); s < end && !stopping(); ++s) {
           sampler->start_pixel_sample(px, py, settings.first_sample + s);
           const Vec2 jitter = sampler->next_2d();  // box filter: uniform in the pixel
           const Ray ray = camera.generate_ray(float(px) + jitter.x, float(py) + jitter.y);
@@ -86,34 +89,48 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
   if (settings.threads > 0) arena.emplace(settings.threads);
   if (!settings.crop.empty() && (settings.crop.width() != width || settings.crop.height() != height))
     throw std::invalid_argument("the film does not match the crop window");
-  while (!(progress && progress->stop.load()) && schedule.next_pass(film, elapsed(), samples.load(), target)) {
+
+  // What the budgets reached so far: spp spread, estimated error, time.
+  auto summarize = [&] {
+    stats.stopped = stopping();
+    stats.samples = samples;
+    stats.seconds = elapsed();
+    schedule.update_floor(film);
+    stats.spp_min = ~uint64_t(0);
+    stats.spp_max = 0;
+    double error_sq = 0;
+    uint64_t converged = 0, film_samples = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const uint64_t n = film.sample_count(x, y);
+        stats.spp_min = std::min(stats.spp_min, n);
+        stats.spp_max = std::max(stats.spp_max, n);
+        film_samples += n;
+        const double e = schedule.relative_error(film, x, y);
+        error_sq += e * e;
+        converged += settings.noise_target > 0 && e <= settings.noise_target;
+      }
+    const double pixels = double(width) * height;
+    stats.spp_mean = double(film_samples) / pixels;  // a resumed film's samples count too
+    stats.relative_error = std::sqrt(error_sq / pixels);
+    stats.converged_fraction = double(converged) / pixels;
+  };
+
+  bool first = true;
+  while (!stopping() && schedule.next_pass(film, elapsed(), samples.load(), target)) {
+    if (!first && after_pass) {
+      summarize();
+      stats.passes = schedule.passes() - 1;  // the pass just planned has not run
+      after_pass(film, stats);
+    }
+    first = false;
     if (progress)
       progress->samples_total.store(std::max(schedule.expected_samples(), samples.load()), std::memory_order_relaxed);
     if (arena) arena->execute(run_pass);
     else run_pass();
   }
-
-  stats.stopped = progress && progress->stop.load();
-  stats.samples = samples;
-  stats.passes = schedule.passes() - 1;
-  stats.seconds = elapsed();
-  schedule.update_floor(film);
-  stats.spp_min = ~uint64_t(0);
-  double error_sq = 0;
-  uint64_t converged = 0;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const uint64_t n = film.sample_count(x, y);
-      stats.spp_min = std::min(stats.spp_min, n);
-      stats.spp_max = std::max(stats.spp_max, n);
-      const double e = schedule.relative_error(film, x, y);
-      error_sq += e * e;
-      converged += settings.noise_target > 0 && e <= settings.noise_target;
-    }
-  const double pixels = double(width) * height;
-  stats.spp_mean = double(samples) / pixels;
-  stats.relative_error = std::sqrt(error_sq / pixels);
-  stats.converged_fraction = double(converged) / pixels;
+  summarize();
+  stats.passes = schedule.passes() - (stats.stopped ? 0 : 1);  // the last call found nothing left to do
   return stats;
 }
 

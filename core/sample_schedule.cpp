@@ -18,6 +18,7 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
     : max_spp_(uint32_t(std::max(1, settings.spp))),
       min_spp_(uint32_t(std::clamp(settings.min_spp, 1, std::max(1, settings.spp)))),
       time_budget_(settings.time_budget),
+      pass_seconds_(settings.pass_seconds),
       noise_target_(settings.noise_target),
       pixels_(size_t(width) * size_t(height)),
       expected_samples_(uint64_t(width) * height * max_spp_),
@@ -36,27 +37,69 @@ double SampleSchedule::relative_error(const Film& film, int x, int y) const {
   return standard_error / std::max(double(luminance(mean_colour(film, x, y))), floor_);
 }
 
+// Caps every pixel's increment (target - count) at the largest k for which the pass takes at most
+// `affordable` samples, found by bisection; returns that k (0 when not even one sample each fits).
+uint64_t SampleSchedule::cap_increments(const std::vector<uint32_t>& counts, std::vector<uint32_t>& target,
+                                        double affordable) const {
+  auto increments_capped_at = [&](uint64_t k) {
+    uint64_t total = 0;
+    for (size_t i = 0; i < pixels_; ++i) total += std::min<uint64_t>(target[i] - counts[i], k);
+    return total;
+  };
+  uint64_t lo = 0, hi = max_spp_;
+  while (lo < hi) {
+    const uint64_t mid = (lo + hi + 1) / 2;
+    if (double(increments_capped_at(mid)) <= affordable) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
 bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target) {
   target.resize(pixels_);
   const int width = film.width();
   ++passes_;
+  std::vector<uint32_t> counts(pixels_);  // samples each pixel has (a resumed film has some), up to the ceiling
+  for (size_t i = 0; i < pixels_; ++i)
+    counts[i] = uint32_t(std::min<uint64_t>(film.sample_count(int(i % size_t(width)), int(i / size_t(width))), max_spp_));
+  const double per_sample = seconds / double(std::max<uint64_t>(samples, 1));  // seconds per sample so far
+  auto apply_cap = [&](uint64_t k) {
+    uint64_t wanted = 0;
+    for (size_t i = 0; i < pixels_; ++i) {
+      target[i] = counts[i] + uint32_t(std::min<uint64_t>(target[i] - counts[i], k));
+      wanted += target[i] - counts[i];
+    }
+    return wanted;
+  };
+
   if (!progressive()) {
-    if (passes_ > 1) return false;
     std::fill(target.begin(), target.end(), max_spp_);
-    return true;
+    uint64_t wanted = 0;
+    for (size_t i = 0; i < pixels_; ++i) wanted += max_spp_ - counts[i];
+    if (passes_ == 1) expected_samples_ = wanted;
+    if (pass_seconds_ > 0 && wanted > 0) {
+      // Passes of about pass_seconds_ at the cost per sample measured so far, one sample per pixel
+      // first. Each pixel still sums its samples in index order, so the bits are those of one pass.
+      const uint64_t k = passes_ == 1 ? 1 : std::max<uint64_t>(1, cap_increments(counts, target, pass_seconds_ / per_sample));
+      wanted = apply_cap(k);
+    }
+    return wanted > 0;
   }
   if (passes_ == 1) {
     // Every pixel first gets the minimum the noise estimate needs (one sample under a time budget
     // alone, so the image is complete as soon as possible).
-    std::fill(target.begin(), target.end(), adaptive() ? min_spp_ : 1u);
-    if (time_budget_ > 0) expected_samples_ = pixels_;
-    return true;
+    const uint32_t first = adaptive() ? min_spp_ : 1u;
+    uint64_t wanted = 0;
+    for (size_t i = 0; i < pixels_; ++i) {
+      target[i] = std::max(counts[i], first);
+      wanted += target[i] - counts[i];
+    }
+    if (time_budget_ > 0) expected_samples_ = wanted;
+    if (wanted > 0) return true;
+    ++passes_;  // a resumed film has its first pass already: plan the second
   }
 
   if (adaptive()) update_floor(film);
-  std::vector<uint32_t> counts(pixels_);  // samples each pixel has, up to the ceiling
-  for (size_t i = 0; i < pixels_; ++i)
-    counts[i] = uint32_t(std::min<uint64_t>(film.sample_count(int(i % size_t(width)), int(i / size_t(width))), max_spp_));
   uint64_t wanted = 0;
   for (size_t i = 0; i < pixels_; ++i) {
     const uint32_t count = counts[i];
@@ -82,30 +125,14 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
   }
 
   if (time_budget_ > 0 && wanted > 0) {
-    // Fit the pass into the time left at the cost per sample measured so far: cap every pixel's
-    // increment at the largest k the time affords (found by bisection).
-    const double per_sample = seconds / double(std::max<uint64_t>(samples, 1));
+    // Fit the pass into the time left at the cost per sample measured so far.
     const double remaining = time_budget_ - seconds;
     const double affordable = remaining > 0 ? remaining / per_sample : 0;
     expected_samples_ = samples + uint64_t(std::min<double>(affordable, double(wanted)));
     if (double(wanted) > affordable) {
-      auto increments_capped_at = [&](uint64_t k) {
-        uint64_t total = 0;
-        for (size_t i = 0; i < pixels_; ++i) total += std::min<uint64_t>(target[i] - counts[i], k);
-        return total;
-      };
-      uint64_t lo = 0, hi = max_spp_;
-      while (lo < hi) {
-        const uint64_t mid = (lo + hi + 1) / 2;
-        if (double(increments_capped_at(mid)) <= affordable) lo = mid;
-        else hi = mid - 1;
-      }
-      if (lo == 0) return false;
-      wanted = 0;
-      for (size_t i = 0; i < pixels_; ++i) {
-        target[i] = counts[i] + uint32_t(std::min<uint64_t>(target[i] - counts[i], lo));
-        wanted += target[i] - counts[i];
-      }
+      const uint64_t k = cap_increments(counts, target, affordable);
+      if (k == 0) return false;
+      wanted = apply_cap(k);
     }
   } else if (adaptive()) {
     expected_samples_ = samples + wanted;

@@ -16,7 +16,8 @@ class SampleSchedule {
 
   // Fills `target` with each pixel's sample count at the end of the next pass (a pixel's samples
   // run from its current count up to its target). Returns false when the render is complete.
-  // `seconds` and `samples` are the rendering time and samples taken so far.
+  // `seconds` and `samples` are the rendering time and samples taken so far. A film that holds
+  // samples already (a resumed render) continues from each pixel's count.
   bool next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target);
 
   bool adaptive() const { return noise_target_ > 0; }
@@ -35,7 +36,9 @@ class SampleSchedule {
  private:
   uint32_t max_spp_;
   uint32_t min_spp_;
-  double time_budget_, noise_target_;
+  uint64_t cap_increments(const std::vector<uint32_t>& counts, std::vector<uint32_t>& target, double affordable) const;
+
+  double time_budget_, pass_seconds_, noise_target_;
   size_t pixels_;
   int passes_ = 0;
   double floor_ = 1e-30;

@@ -1,7 +1,9 @@
 #include "io/film_state.h"
 
 #include <bit>
+#include <algorithm>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "io/cryptomatte.h"
@@ -49,6 +51,40 @@ AovSet aovs_of(const ExrImage& image, const std::string& path) {
   }
 }
 
+// Cryptomatte counts, exactly: channels <prefix><name><k>.id and .count hold each pixel's k-th id
+// and its sample count (count 0: no k-th id), for k below the most ids any pixel has.
+void add_id_count_state(const std::vector<PixelIdCounts>& pixels, const std::string& name, ExrImage& image) {
+  size_t most = 0;
+  for (const PixelIdCounts& p : pixels) most = std::max(most, p.size());
+  for (size_t k = 0; k < most; ++k) {
+    std::vector<uint32_t> ids(pixels.size(), 0), counts(pixels.size(), 0);
+    for (size_t i = 0; i < pixels.size(); ++i)
+      if (k < pixels[i].size()) {
+        ids[i] = pixels[i][k].id;
+        counts[i] = pixels[i][k].count;
+      }
+    const std::string base = kPrefix + name + std::to_string(k);
+    image.channels.push_back({base + ".id", ExrPixelType::Uint, {}, std::move(ids)});
+    image.channels.push_back({base + ".count", ExrPixelType::Uint, {}, std::move(counts)});
+  }
+}
+
+// The counts add_id_count_state wrote, or nullopt when the file has none (an image written
+// without state, or a film without these ids).
+std::optional<std::vector<PixelIdCounts>> id_count_state(const ExrImage& image, const std::string& name, size_t n) {
+  if (!image.find(kPrefix + name + "0.id")) return std::nullopt;
+  std::vector<PixelIdCounts> pixels(n);
+  for (size_t k = 0;; ++k) {
+    const std::string base = kPrefix + name + std::to_string(k);
+    const ExrChannel* ids = image.find(base + ".id");
+    const ExrChannel* counts = image.find(base + ".count");
+    if (!ids || !counts) break;
+    for (size_t i = 0; i < n; ++i)
+      if (counts->bits[i] > 0) add_id_count(pixels[i], ids->bits[i], counts->bits[i]);
+  }
+  return pixels;
+}
+
 }  // namespace
 
 void add_film_state(const Film& film, ExrImage& image) {
@@ -83,13 +119,17 @@ void add_film_state(const Film& film, ExrImage& image) {
     image.channels.push_back({std::string(kPrefix) + "nearestObject", ExrPixelType::Uint, {}, std::move(object)});
     image.channels.push_back({std::string(kPrefix) + "nearestMaterial", ExrPixelType::Uint, {}, std::move(material)});
   }
+  if (film.aovs().has(Aov::CryptoObject)) add_id_count_state(film.crypto_objects(), "cryptoObject", image);
+  if (film.aovs().has(Aov::CryptoMaterial)) add_id_count_state(film.crypto_materials(), "cryptoMaterial", image);
 }
+
+bool has_film_state(const ExrImage& image) { return image.find(std::string(kPrefix) + "0hi") != nullptr; }
 
 Film film_from_image(const ExrImage& image, const std::string& path) {
   const int w = image.data.width(), h = image.data.height();
   Film film(w, h, aovs_of(image, path));
   const size_t n = size_t(w) * size_t(h);
-  const bool exact = image.find(std::string(kPrefix) + "0hi") != nullptr;
+  const bool exact = has_film_state(image);
   std::vector<uint64_t> counts(n);
   if (exact) {
     const int k = doubles_per_pixel(film);
@@ -168,8 +208,13 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
     }
   }
   try {
-    if (film.aovs().has(Aov::CryptoObject)) film.crypto_objects() = cryptomatte_counts(image, "CryptoObject", counts);
-    if (film.aovs().has(Aov::CryptoMaterial)) film.crypto_materials() = cryptomatte_counts(image, "CryptoMaterial", counts);
+    // Exact counts from the state when there are any, else from the layers' top ranks.
+    auto id_counts = [&](const std::string& state, const std::string& layer) {
+      std::optional<std::vector<PixelIdCounts>> stored = id_count_state(image, state, n);
+      return stored ? std::move(*stored) : cryptomatte_counts(image, layer, counts);
+    };
+    if (film.aovs().has(Aov::CryptoObject)) film.crypto_objects() = id_counts("cryptoObject", "CryptoObject");
+    if (film.aovs().has(Aov::CryptoMaterial)) film.crypto_materials() = id_counts("cryptoMaterial", "CryptoMaterial");
   } catch (const std::exception& e) {
     throw InputError(path, "Cryptomatte layers", e.what());
   }

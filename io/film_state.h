@@ -11,8 +11,11 @@ namespace prism {
 
 // Adds uint channels "prism.state.<name>" holding every accumulator of `film` bit for bit (a
 // double as two uint halves): the beauty sums, squared sums and counts, the averaged AOV sums, and
-// the nearest hit. Cryptomatte counts travel in the Cryptomatte layers themselves.
+// the nearest hit, and every Cryptomatte id count (the layers keep only the top ranks).
 void add_film_state(const Film& film, ExrImage& image);
+
+// Whether `image` carries the channels add_film_state writes.
+bool has_film_state(const ExrImage& image);
 
 // The film a prism EXR holds, over its data window, with the AOVs its "prism/aovs" attribute
 // names: exact from prism.state.* channels when present; otherwise rebuilt from the layers

@@ -29,7 +29,7 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "sampler", "time", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
+                             "integrator", "sampler", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
@@ -99,15 +99,8 @@ class JobParser {
     }
     if (root.contains("integrator")) job.settings.integrator = string_at(root["integrator"], "$.integrator");
     if (root.contains("sampler")) job.settings.sampler = string_at(root["sampler"], "$.sampler");
-    if (root.contains("time")) {
-      const json& t = root["time"];
-      std::optional<double> seconds;
-      if (t.is_number()) seconds = t.get<double>();
-      else if (t.is_string()) seconds = parse_duration(t.get<std::string>());
-      if (!seconds || !(*seconds > 0) || !std::isfinite(*seconds))
-        fail("$.time", "expected a positive duration in seconds, or text such as \"30s\", \"2m\", \"1h30m\"");
-      job.settings.time_budget = *seconds;
-    }
+    if (root.contains("time")) job.settings.time_budget = duration_at(root["time"], "$.time");
+    if (root.contains("checkpoint")) job.checkpoint_seconds = duration_at(root["checkpoint"], "$.checkpoint");
     if (root.contains("noise")) job.settings.noise_target = number_at(root["noise"], "$.noise", 1e-6, 1e6);
     if (root.contains("min_spp")) job.settings.min_spp = int_at(root["min_spp"], "$.min_spp", 1, 1 << 30);
     if (root.contains("rr_start_depth"))
@@ -158,6 +151,16 @@ class JobParser {
   std::string string_at(const json& j, const std::string& where) const {
     if (!j.is_string()) fail(where, "expected a string");
     return j.get<std::string>();
+  }
+
+  // Seconds, as a number or as text such as "30s", "2m", "1h30m".
+  double duration_at(const json& j, const std::string& where) const {
+    std::optional<double> seconds;
+    if (j.is_number()) seconds = j.get<double>();
+    else if (j.is_string()) seconds = parse_duration(j.get<std::string>());
+    if (!seconds || !(*seconds > 0) || !std::isfinite(*seconds))
+      fail(where, "expected a positive duration in seconds, or text such as \"30s\", \"2m\", \"1h30m\"");
+    return *seconds;
   }
 
   bool bool_at(const json& j, const std::string& where) const {

@@ -61,6 +61,32 @@ if(NOT last_out STREQUAL "" OR NOT last_err STREQUAL "")
   message(FATAL_ERROR "--quiet printed: ${last_out}${last_err}")
 endif()
 
+# --progress plain prints parseable lines on stdout, ending at 100%; --quiet does not silence it.
+run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/plain.exr" --spp 2 --res 16x16 --progress plain -q)
+expect_match("${last_out}" "^(progress [0-9]+\\.[0-9]%\n)*progress 100\\.0%\n$" "plain progress lines")
+run(2 "${PRISM}" render "${box}" -o "${WORK_DIR}/x.exr" --progress fancy)
+expect_match("${last_err}" "--progress: expected bar, plain or none" "unclear --progress message")
+# Checkpoints: from the flag or the job key "checkpoint"; the final file is a complete render that
+# keeps its film state (so it can be continued to more samples).
+file(WRITE "${WORK_DIR}/checkpointed.json" "{\"scene\": \"${box}\", \"spp\": 4, \"resolution\": [16, 16],
+  \"checkpoint\": \"2s\", \"output\": \"checkpointed.exr\"}")
+run(0 "${PRISM}" render "${WORK_DIR}/checkpointed.json" -q)
+file(STRINGS "${WORK_DIR}/checkpointed.exr" header LIMIT_INPUT 8000)
+expect_match("${header}" "prism.state.0hi" "a checkpointed render lost its film state")
+expect_match("${header}" "prism/status;string;complete" "a finished render does not say it is complete")
+run(0 "${PRISM}" render "${WORK_DIR}/checkpointed.json" -q --spp 8 --resume "${WORK_DIR}/checkpointed.exr"
+    -o "${WORK_DIR}/more.exr")
+run(0 "${PRISM}" render "${WORK_DIR}/checkpointed.json" -q --spp 8 -o "${WORK_DIR}/eight.exr")
+run(0 "${PRISM}" compare "${WORK_DIR}/more.exr" "${WORK_DIR}/eight.exr" --metric maxabs --threshold 0)
+run(2 "${PRISM}" render "${box}" -o "${WORK_DIR}/x.exr" --checkpoint soon)
+expect_match("${last_err}" "--checkpoint: expected a duration" "unclear --checkpoint message")
+file(WRITE "${WORK_DIR}/bad_checkpoint.json" "{\"scene\": \"${box}\", \"checkpoint\": -1}")
+run(3 "${PRISM}" render "${WORK_DIR}/bad_checkpoint.json")
+expect_match("${last_err}" "checkpoint" "unclear checkpoint key message")
+run(3 "${PRISM}" render "${box}" --spp 2 --res 16x16 -o "${WORK_DIR}/x.exr" --resume "${WORK_DIR}/plain.exr")
+expect_match("${last_err}" "plain.exr: prism.state channels: missing" "unclear message for a file that cannot be resumed")
+run(3 "${PRISM}" render "${box}" -o "${WORK_DIR}/x.exr" --resume "${WORK_DIR}/absent.exr")
+
 # Each class of failure has its exit code and a message naming the culprit.
 run(2 "${PRISM}" render "${box}" --spp 0)
 run(2 "${PRISM}" render "${box}" --res 12by4 -o "${WORK_DIR}/x.exr")

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <new>
+#include <string>
 #include <stdexcept>
 
 #include "apps/exit_codes.h"
@@ -16,26 +17,27 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Runs a command, mapping each class of failure to its message and exit code.
+// Runs a command, mapping each class of failure to its message (printed, and kept in `message`
+// when given) and exit code.
 template <typename Command>
-int run_reporting_errors(Command&& command) {
+int run_reporting_errors(Command&& command, std::string* message = nullptr) {
+  auto report = [&](const std::string& text, int code) {
+    fmt::print(stderr, "prism: {}\n", text);
+    if (message) *message = text;
+    return code;
+  };
   try {
     return command();
   } catch (const UsageError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitUsage;
+    return report(std::string("error: ") + e.what(), kExitUsage);
   } catch (const InputError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitInput;
+    return report(std::string("error: ") + e.what(), kExitInput);
   } catch (const OutputError& e) {
-    fmt::print(stderr, "prism: error: {}\n", e.what());
-    return kExitOutput;
+    return report(std::string("error: ") + e.what(), kExitOutput);
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "prism: error: out of memory\n");
-    return kExitInternal;
+    return report("error: out of memory", kExitInternal);
   } catch (const std::exception& e) {
-    fmt::print(stderr, "prism: internal error: {}\n", e.what());
-    return kExitInternal;
+    return report(std::string("internal error: ") + e.what(), kExitInternal);
   }
 }
 

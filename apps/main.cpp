@@ -1,6 +1,7 @@
 // prism command line: parses arguments and dispatches to the commands.
 #include <CLI/CLI.hpp>
 
+#include "apps/batch_command.h"
 #include "apps/bench_command.h"
 #include "apps/compare_command.h"
 #include "apps/converge_command.h"
@@ -113,6 +114,8 @@ int main(int argc, char** argv) {
   CLI::App* bench_cmd = add_bench_command(app, bench);
   MergeOptions merge;
   CLI::App* merge_cmd = add_merge_command(app, merge);
+  BatchOptions batch;
+  CLI::App* batch_cmd = add_batch_command(app, batch);
 
   try {
     app.parse(argc, argv);
@@ -125,5 +128,6 @@ int main(int argc, char** argv) {
   if (converge_cmd->parsed()) return run_converge(converge);
   if (bench_cmd->parsed()) return run_bench(bench);
   if (merge_cmd->parsed()) return run_merge(merge);
+  if (batch_cmd->parsed()) return run_batch(batch);
   return kExitUsage;
 }

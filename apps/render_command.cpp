@@ -196,8 +196,8 @@ int render(const RenderOptions& o, const BatchContext& batch) {
 
 }  // namespace
 
-int run_render(const RenderOptions& options, const BatchContext& batch) {
-  return run_reporting_errors([&] { return render(options, batch); });
+int run_render(const RenderOptions& options, const BatchContext& batch, std::string* message) {
+  return run_reporting_errors([&] { return render(options, batch); }, message);
 }
 
 }  // namespace prism

@@ -9,12 +9,14 @@
 
 #include "apps/progress_bar.h"
 #include "core/render_settings.h"
+#include "io/job_file.h"
 
 namespace prism {
 
 // Command-line values; unset ones fall back to the job file, then to defaults.
 struct RenderOptions {
   std::string scene;
+  std::optional<JobFile> job;  // a job parsed already (from a batch): used instead of reading `scene`
   std::optional<std::string> output, preview;
   std::optional<std::string> pixel_type;   // "float" or "half" for the beauty channels
   std::optional<std::string> compression;  // "zip", "piz", "dwaa", "none"
@@ -42,7 +44,7 @@ struct BatchContext {
 
 // Renders and writes the outputs; returns the process exit code and reports errors on stderr.
 // Without a batch, SIGINT and SIGTERM stop the render, which writes what it has (resumable) and
-// returns kExitStopped.
-int run_render(const RenderOptions& options, const BatchContext& batch = {});
+// returns kExitStopped. A failure's message is also kept in `message` when given.
+int run_render(const RenderOptions& options, const BatchContext& batch = {}, std::string* message = nullptr);
 
 }  // namespace prism

@@ -98,7 +98,8 @@ std::string si(double v) {
 
 PreparedRender prepare_render(const RenderOptions& o) {
   Diagnostics diag;
-  LoadedScene loaded = load_scene_source(o.scene, diag, environment_option(o));
+  LoadedScene loaded = o.job ? load_job(*o.job, diag, environment_option(o))
+                             : load_scene_source(o.scene, diag, environment_option(o));
   if (!o.quiet)
     for (const auto& w : diag.lines()) fmt::print(stderr, "prism: warning: {}\n", w);
 

@@ -24,9 +24,7 @@ namespace {
 
 PixelWindow window(const Imath::Box2i& b) { return {b.min.x, b.min.y, b.max.x + 1, b.max.y + 1}; }
 
-}  // namespace
-
-ExrImage read_exr(const std::string& path) {
+ExrImage read(const std::string& path, bool with_pixels) {
   ExrImage image;
   try {
     Imf::MultiPartInputFile file(path.c_str());
@@ -80,6 +78,7 @@ ExrImage read_exr(const std::string& path) {
                                                   : ExrPixelType::Float;
         image.channels.push_back(std::move(c));
       }
+      if (!with_pixels) continue;
       for (size_t i = first; i < image.channels.size(); ++i) {
         ExrChannel& c = image.channels[i];
         char* base;
@@ -104,5 +103,11 @@ ExrImage read_exr(const std::string& path) {
   }
   return image;
 }
+
+}  // namespace
+
+ExrImage read_exr(const std::string& path) { return read(path, true); }
+
+ExrImage read_exr_header(const std::string& path) { return read(path, false); }
 
 }  // namespace prism

@@ -12,5 +12,7 @@ namespace prism {
 // float, double and 4x4 float matrix attributes are kept (from the first part). Every part must
 // share the data window. Throws InputError naming the file for anything unreadable.
 ExrImage read_exr(const std::string& path);
+// The same without the pixels: windows, attributes, and channels with names and types only.
+ExrImage read_exr_header(const std::string& path);
 
 }  // namespace prism

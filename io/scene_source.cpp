@@ -18,20 +18,25 @@ LoadedScene load_scene_source(const std::string& path, Diagnostics& diag, const 
   } else if (ext == ".json") {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "no such file");
-    JobFile job = parse_job_file(path, diag);
-    if (job.scene) {
-      out.scene = load_gltf(*job.scene, diag);
-    } else {
-      out.scene.source = path;
-    }
-    apply_job_edits(job, out.scene);
-    out.job = std::move(job);
+    return load_job(parse_job_file(path, diag), diag, environment);
   } else {
     throw InputError(path, "", "unknown scene type '" + ext + "' (expected .gltf, .glb or a .json job file)");
   }
-  EnvironmentSpec env = out.job ? out.job->environment : EnvironmentSpec{};
+  EnvironmentSpec env;
   env.override_with(environment);
   apply_environment(env, out.scene);
+  return out;
+}
+
+LoadedScene load_job(JobFile job, Diagnostics& diag, const EnvironmentSpec& environment) {
+  LoadedScene out;
+  if (job.scene) out.scene = load_gltf(*job.scene, diag);
+  else out.scene.source = job.path;
+  apply_job_edits(job, out.scene);
+  EnvironmentSpec env = job.environment;
+  env.override_with(environment);
+  apply_environment(env, out.scene);
+  out.job = std::move(job);
   return out;
 }
 

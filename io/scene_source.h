@@ -18,5 +18,7 @@ struct LoadedScene {
 // Loads by file type (the extension: .gltf, .glb or .json), with the job's environment, then
 // `environment` (e.g. from the command line) over it. Throws InputError.
 LoadedScene load_scene_source(const std::string& path, Diagnostics& diag, const EnvironmentSpec& environment = {});
+// The same for a job already parsed (one job of a batch).
+LoadedScene load_job(JobFile job, Diagnostics& diag, const EnvironmentSpec& environment = {});
 
 }  // namespace prism

@@ -49,4 +49,33 @@ grep -q "part.exr: prism/seed: '3' differs" err.txt || fail "unclear message: $(
 [ $? -eq 3 ] || fail "resuming with other AOVs was not an input error"
 grep -q "prism/aovs" err.txt || fail "unclear message: $(cat err.txt)"
 [ -f x.exr ] && fail "a refused resume wrote its output"
-echo "PASS: stopped by SIGINT, resumed, stopped by SIGTERM, resumed: identical to one render"
+
+# --skip-existing skips a complete output but renders over a stopped one.
+cat > skip.json <<JSON
+{"defaults": {"scene": "$scene", "resolution": [16, 16], "spp": 2, "aovs": "all", "seed": 3},
+ "jobs": [{"output": "whole.exr"}, {"output": "part.exr"}]}
+JSON
+"$prism" batch skip.json --skip-existing >out.txt 2>&1 || fail "batch --skip-existing failed: $(cat out.txt)"
+grep -Eq "1 +skipped .* whole.exr" out.txt || fail "a complete output was not skipped: $(cat out.txt)"
+grep -Eq "2 +ok .* part.exr" out.txt || fail "a stopped output was skipped: $(cat out.txt)"
+
+# A signal stops a batch: the job under way writes what it has, the rest do not run, exit 6.
+cat > long.json <<JSON
+{"defaults": {"scene": "$scene", "resolution": [64, 64], "spp": 4096, "checkpoint": 0.3},
+ "jobs": [{"output": "long1.exr"}, {"output": "long2.exr"}]}
+JSON
+"$prism" batch long.json >out.txt 2>&1 &
+pid=$! waited=0
+until [ -f long1.exr ]; do
+  sleep 0.05
+  waited=$((waited + 1))
+  [ $waited -lt 2400 ] || { kill -KILL $pid; fail "no checkpoint of long1.exr within 120 s"; }
+done
+kill -INT $pid
+wait $pid
+code=$?
+[ $code -eq 6 ] || fail "expected exit code 6 from a stopped batch, got $code: $(cat out.txt)"
+grep -Eq "1 +stopped .* long1.exr" out.txt || fail "the stopped job is not reported: $(cat out.txt)"
+grep -Eq "2 +not run" out.txt || fail "the job after the stop is not reported as not run: $(cat out.txt)"
+[ -f long2.exr ] && fail "a job after the stop ran"
+echo "PASS: stopped by SIGINT, resumed, stopped by SIGTERM, resumed: identical to one render; batches skip and stop"

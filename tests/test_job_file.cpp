@@ -7,6 +7,7 @@
 #include "gltf_writer.h"
 #include "io/duration_text.h"
 #include "io/errors.h"
+#include "io/batch_file.h"
 #include "io/job_file.h"
 #include "io/scene_source.h"
 
@@ -184,6 +185,61 @@ TEST(SceneSource, LoadsJobWithItsGltfAndRejectsUnknownTypes) {
   EXPECT_EQ(loaded.scene.triangle_count(), 1u);
   EXPECT_THROW(load_scene_source(dir + "/scene.obj", diag), InputError);
   EXPECT_THROW(load_scene_source(dir + "/missing.json", diag), InputError);
+}
+
+}  // namespace
+}  // namespace prism
+
+namespace prism {
+namespace {
+
+std::vector<BatchJobText> batch_from(const std::string& text) {
+  const std::string path = test::make_temp_dir("batch") + "/batch.json";
+  std::ofstream(path) << text;
+  return parse_batch_file(path);
+}
+
+// Each job is its keys over the defaults, objects merging key by key (RFC 7386), and parses as a
+// job file relative to the batch file's folder.
+TEST(BatchFile, JobsInheritTheDefaults) {
+  const auto jobs = batch_from(R"({"defaults": {"scene": "box.gltf", "spp": 16, "materials": {"red": {"roughness": 0.5}}},
+    "jobs": [{"output": "a.exr"}, {"output": "b.exr", "spp": 64, "materials": {"red": {"metallic": 1}}},
+             {"output": "c.exr", "spp": null}]})");
+  ASSERT_EQ(jobs.size(), 3u);
+  EXPECT_EQ(jobs[1].where, "$.jobs[1]");
+  Diagnostics diag;
+  const JobFile a = parse_job_json(jobs[0].json, "/batches/b.json", diag);
+  const JobFile b = parse_job_json(jobs[1].json, "/batches/b.json", diag);
+  const JobFile c = parse_job_json(jobs[2].json, "/batches/b.json", diag);
+  EXPECT_TRUE(diag.empty());
+  EXPECT_EQ(*a.scene, "/batches/box.gltf");
+  EXPECT_EQ(*a.output, "/batches/a.exr");
+  EXPECT_EQ(*a.settings.spp, 16);
+  EXPECT_EQ(*b.settings.spp, 64);
+  ASSERT_EQ(b.materials.size(), 1u);
+  EXPECT_EQ(*b.materials[0].roughness, 0.5f);  // kept from the defaults
+  EXPECT_EQ(*b.materials[0].metallic, 1.0f);   // added by the job
+  EXPECT_FALSE(c.settings.spp.has_value());    // null removed the default
+  EXPECT_EQ(batch_from(R"([{"output": "x.exr"}])").size(), 1u);  // a bare list, no defaults
+}
+
+TEST(BatchFile, MalformedFilesNameTheElement) {
+  auto error_of = [](const std::string& text) {
+    try {
+      batch_from(text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("{").find("not valid JSON"), std::string::npos);
+  EXPECT_NE(error_of(R"({"defaults": {}})").find("$.jobs: missing"), std::string::npos);
+  EXPECT_NE(error_of(R"({"jobs": {}})").find("$.jobs: expected a list"), std::string::npos);
+  EXPECT_NE(error_of(R"({"jobs": []})").find("no jobs"), std::string::npos);
+  EXPECT_NE(error_of(R"({"jobs": [{}, 3]})").find("$.jobs[1]: expected an object"), std::string::npos);
+  EXPECT_NE(error_of(R"({"defaults": [], "jobs": [{}]})").find("$.defaults: expected an object"), std::string::npos);
+  EXPECT_NE(error_of(R"({"job": [{}]})").find("$.job: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("").find("not valid JSON"), std::string::npos);
 }
 
 }  // namespace

@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
                   "Render sample indices START .. START+COUNT-1 of every pixel (instead of --spp): a slice of a "
                   "render that 'prism merge' combines with the others")
       ->expected(2);
+  cmd->add_flag("--stamp", render.stamp,
+                "Record the date (capDate) and the render time (prism/renderSeconds) in the header; without it the "
+                "same inputs give the same bytes");
   cmd->add_option("--checkpoint", render.checkpoint,
                   "Write the image so far to the output about this often (e.g. 60, 30s, 5m), resumable with --resume; "
                   "the final image is the same")

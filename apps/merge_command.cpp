@@ -97,7 +97,8 @@ int merge(const MergeOptions& o) {
   // with it, since every part renders the same scene.
   for (const ExrAttribute& a : first.attributes) {
     static const char* dropped[] = {"prism/firstSample", "prism/crop", "prism/spp", "prism/sppMin", "prism/sppMax",
-                                    "prism/sppMean", "prism/relativeError", "prism/renderSeconds", "prism/passes"};
+                                    "prism/sppMean", "prism/relativeError", "prism/renderSeconds", "prism/passes",
+                                    "capDate", "prism/status"};
     if (std::find(std::begin(dropped), std::end(dropped), a.first) == std::end(dropped) && a.first.rfind("prism.state", 0) != 0)
       out.attributes.push_back(a);
   }
@@ -112,6 +113,10 @@ int merge(const MergeOptions& o) {
   out.attributes.push_back({"prism/sppMin", int(lo)});
   out.attributes.push_back({"prism/sppMax", int(hi)});
   out.attributes.push_back({"prism/sppMean", double(total) / (double(merged.width()) * merged.height())});
+  // Complete only when every part is: a stopped or checkpointed part leaves the merge unfinished too.
+  const bool complete = std::all_of(parts.begin(), parts.end(),
+                                    [](const Part& p) { return attribute_text(p.image, "prism/status") == "complete"; });
+  out.attributes.push_back({"prism/status", std::string(complete ? "complete" : "incomplete")});
   std::string sources;
   for (const Part& p : parts) sources += (sources.empty() ? "" : " ") + p.path;
   out.attributes.push_back({"prism/mergedFrom", fmt::format("{} parts: {}", parts.size(), sources)});

@@ -21,6 +21,7 @@ struct RenderOptions {
   std::optional<std::string> pixel_type;   // "float" or "half" for the beauty channels
   std::optional<std::string> compression;  // "zip", "piz", "dwaa", "none"
   bool multipart = false;
+  bool stamp = false;                      // date and render time in the header
   std::optional<std::string> aovs;         // "albedo,normal,..."
   std::vector<int> crop;                   // x0 y0 x1 y1
   std::vector<uint64_t> sample_range;      // first count

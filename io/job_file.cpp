@@ -28,7 +28,7 @@ class JobParser {
     JobFile job;
     job.path = file_;
     expect_object(root, "$");
-    warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
+    warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "stamp", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
                              "integrator", "sampler", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "clamp_indirect",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
@@ -48,6 +48,7 @@ class JobParser {
       if (!parse_exr_compression(*job.compression)) fail("$.compression", "expected \"zip\", \"piz\", \"dwaa\" or \"none\"");
     }
     if (root.contains("multipart")) job.multipart = bool_at(root["multipart"], "$.multipart");
+    if (root.contains("stamp")) job.stamp = bool_at(root["stamp"], "$.stamp");
     if (root.contains("aovs")) {
       const json& a = root["aovs"];
       std::string list;

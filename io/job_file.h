@@ -62,6 +62,7 @@ struct JobFile {
   std::optional<std::string> pixel_type;   // "float" or "half": the beauty channels' type
   std::optional<std::string> compression;  // "zip", "piz", "dwaa" or "none"
   std::optional<bool> multipart;
+  std::optional<bool> stamp;  // write the date and the render time in the header
   std::optional<double> checkpoint_seconds;  // write the progressive image this often
   RenderSettingsOverride settings;
   std::vector<MaterialEdit> materials;

@@ -141,7 +141,13 @@ int render(const RenderOptions& o, const BatchContext& batch) {
   };
 
   Film film(window.width(), window.height(), settings.aovs);
-  if (o.resume) film = resumed_film(*o.resume, image_of(film, RenderStats{}, "complete"));
+  if (o.resume) {
+    ExrImage expected;  // the header this render writes, to check the file against
+    expected.display = full;
+    expected.data = window;
+    expected.attributes = header_attributes(o, p, camera, RenderStats{});
+    film = resumed_film(*o.resume, expected);
+  }
   if (settings.aovs.has(Aov::CryptoObject) || settings.aovs.has(Aov::CryptoMaterial))
     film.set_cryptomatte_ids(object_cryptomatte_ids(scene.desc()), material_cryptomatte_ids(scene.desc()));
   uint64_t resumed_samples = 0;

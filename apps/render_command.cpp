@@ -3,8 +3,6 @@
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 
-#include <algorithm>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 
@@ -40,26 +38,12 @@ std::string spp_summary(const RenderStats& stats) {
   return fmt::format("{}-{} (mean {:.1f})", stats.spp_min, stats.spp_max, stats.spp_mean);
 }
 
-bool image_has(const std::vector<ExrAttribute>& attributes, const std::string& name) {
-  return std::any_of(attributes.begin(), attributes.end(), [&](const ExrAttribute& a) { return a.first == name; });
-}
-
 // Everything in the header that describes the render rather than its pixels.
 std::vector<ExrAttribute> header_attributes(const RenderOptions& o, const PreparedRender& p, const Camera& camera,
                                             const RenderStats& stats) {
-  std::vector<ExrAttribute> a = render_attributes(p.settings, stats);
+  std::vector<ExrAttribute> a = render_attributes(p.settings, stats, o.stamp || (p.job && p.job->stamp.value_or(false)));
   for (ExrAttribute& c : camera_attributes(camera)) a.push_back(std::move(c));
   a.push_back({"prism/version", std::string(PRISM_VERSION)});
-  if (o.stamp || (p.job && p.job->stamp.value_or(false))) {
-    // OpenEXR's standard capDate, "YYYY:MM:DD hh:mm:ss" in local time, and the render time.
-    const std::time_t now = std::time(nullptr);
-    std::tm local{};
-    localtime_r(&now, &local);
-    char date[32];
-    std::strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &local);
-    a.push_back({"capDate", std::string(date)});
-    if (!image_has(a, "prism/renderSeconds")) a.push_back({"prism/renderSeconds", stats.seconds});
-  }
   a.push_back({"prism/scene", o.scene});
   a.push_back({"prism/camera", p.camera.name});
   const SceneDesc& desc = p.scene->desc();

@@ -1,10 +1,11 @@
 #include "io/render_attributes.h"
 
+#include <ctime>
 #include <string>
 
 namespace prism {
 
-std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const RenderStats& stats) {
+std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const RenderStats& stats, bool stamp) {
   const bool timed = s.time_budget > 0, adaptive = s.noise_target > 0;
   const std::string budget = timed && adaptive ? "time+noise" : timed ? "time" : adaptive ? "noise" : "spp";
   std::vector<ExrAttribute> a = {
@@ -36,9 +37,16 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
     a.push_back({"prism/sppLimit", s.spp});
     a.push_back({"prism/passes", stats.passes});
   }
-  if (timed) {
-    a.push_back({"prism/timeBudget", s.time_budget});
-    a.push_back({"prism/renderSeconds", stats.seconds});
+  if (timed) a.push_back({"prism/timeBudget", s.time_budget});
+  if (timed || stamp) a.push_back({"prism/renderSeconds", stats.seconds});
+  if (stamp) {
+    // OpenEXR's standard capDate: "YYYY:MM:DD hh:mm:ss", local time.
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &local);
+    a.push_back({"capDate", std::string(date)});
   }
   if (adaptive) {
     a.push_back({"prism/noiseTarget", s.noise_target});

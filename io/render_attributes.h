@@ -12,7 +12,8 @@ namespace prism {
 // "prism/..." attributes for every setting that decides the image (sampler, seed, integrator,
 // depths, Russian roulette, clamping), the budget ("spp", "time", "noise" or "time+noise") with its
 // values, and what was reached (spp minimum/mean/maximum, passes, estimated relative error).
-// Wall-clock time appears only under a time budget, so other renders write reproducible bytes.
-std::vector<ExrAttribute> render_attributes(const RenderSettings& settings, const RenderStats& stats);
+// Wall-clock time appears only under a time budget or when `stamp` asks for it (then with the
+// date, OpenEXR's capDate), so other renders write reproducible bytes.
+std::vector<ExrAttribute> render_attributes(const RenderSettings& settings, const RenderStats& stats, bool stamp = false);
 
 }  // namespace prism

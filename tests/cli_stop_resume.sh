@@ -12,19 +12,26 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 args=(render "$scene" --res 64x64 --spp 2048 --aovs all --seed 3 -q)
 "$prism" "${args[@]}" -o whole.exr --checkpoint 1000 || fail "the uninterrupted render failed"
 
+# Waits until process $1 has written file $2 (its first checkpoint); fails if the process ends
+# first or nothing comes within 120 s.
+wait_for_checkpoint() {
+  local pid=$1 file=$2 waited=0
+  until [ -f "$file" ]; do
+    kill -0 "$pid" 2>/dev/null || fail "the process writing $file ended before its first checkpoint"
+    sleep 0.05
+    waited=$((waited + 1))
+    [ $waited -lt 2400 ] || { kill -KILL "$pid"; fail "no checkpoint of $file within 120 s"; }
+  done
+}
+
 # Starts a render writing $1 in the background, waits for its first checkpoint, sends signal $2,
 # and checks the distinct exit code and the file's status.
 interrupt() {
   local out=$1 signal=$2
   shift 2
   "$prism" "${args[@]}" -o "$out" --checkpoint 0.3 "$@" &
-  local pid=$! waited=0
-  until [ -f "$out" ]; do
-    kill -0 $pid 2>/dev/null || fail "the render of $out ended before its first checkpoint"
-    sleep 0.05
-    waited=$((waited + 1))
-    [ $waited -lt 2400 ] || { kill -KILL $pid; fail "no checkpoint of $out within 120 s"; }
-  done
+  local pid=$!
+  wait_for_checkpoint $pid "$out"
   grep -aq "checkpoint" "$out" || fail "$out's first checkpoint does not say it is one"
   kill -"$signal" $pid
   wait $pid
@@ -65,12 +72,8 @@ cat > long.json <<JSON
  "jobs": [{"output": "long1.exr"}, {"output": "long2.exr"}]}
 JSON
 "$prism" batch long.json >out.txt 2>&1 &
-pid=$! waited=0
-until [ -f long1.exr ]; do
-  sleep 0.05
-  waited=$((waited + 1))
-  [ $waited -lt 2400 ] || { kill -KILL $pid; fail "no checkpoint of long1.exr within 120 s"; }
-done
+pid=$!
+wait_for_checkpoint $pid long1.exr
 kill -INT $pid
 wait $pid
 code=$?

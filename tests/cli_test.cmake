@@ -18,15 +18,20 @@ function(expect_match text regex complaint)
   endif()
 endfunction()
 
+# Fails with "<what> did not write <file>: <last output>" unless every file exists in WORK_DIR.
+function(expect_written what)
+  foreach(f ${ARGN})
+    if(NOT EXISTS "${WORK_DIR}/${f}")
+      message(FATAL_ERROR "${what} did not write ${f}: ${last_out}")
+    endif()
+  endforeach()
+endfunction()
+
 set(box "${SOURCE_DIR}/scenes/cornell-box/cornell-box.gltf")
 
 # A small render writes the EXR and the preview, and prints the summary line.
 run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/box.exr" --preview "${WORK_DIR}/box.png" --spp 2 --res 32x24 --threads 2)
-foreach(f box.exr box.png)
-  if(NOT EXISTS "${WORK_DIR}/${f}")
-    message(FATAL_ERROR "render did not write ${f}")
-  endif()
-endforeach()
+expect_written(render box.exr box.png)
 expect_match("${last_out}" "32x24, 2 spp, .* s, .* Mpaths/s, .* Mrays/s" "missing summary line")
 
 # A job file supplies settings; command-line flags override them.
@@ -271,11 +276,7 @@ file(WRITE "${WORK_DIR}/batch.json" "{\"defaults\": {\"scene\": \"${box}\", \"sp
   \"jobs\": [{\"output\": \"batch_a.exr\"}, {\"output\": \"batch_b.exr\", \"scene\": \"absent.gltf\"},
             {\"output\": \"batch_c.exr\", \"seed\": 4, \"aovs\": [\"depth\"]}, {\"output\": \"batch_d.exr\", \"spp\": \"many\"}]}")
 run(3 "${PRISM}" batch "${WORK_DIR}/batch.json" --progress plain)
-foreach(f batch_a.exr batch_c.exr)
-  if(NOT EXISTS "${WORK_DIR}/${f}")
-    message(FATAL_ERROR "batch did not render ${f}: ${last_out}")
-  endif()
-endforeach()
+expect_written(batch batch_a.exr batch_c.exr)
 expect_match("${last_out}" "job 1/4 \\(\\$\\.jobs\\[0\\]\\)" "batch job header line")
 expect_match("${last_out}" "progress 100\\.0% job 3/4 batch 75\\.0%" "batch plain progress")
 expect_match("${last_out}" "2 +input error .*batch_b.exr" "broken job not in the summary")

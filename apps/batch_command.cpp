@@ -48,6 +48,7 @@ const char* failure_class(int code) {
     case kExitInput: return "input error";
     case kExitOutput: return "output error";
     case kExitStopped: return "stopped";
+    case kExitMemory: return "over the memory limit";
     default: return "internal error";
   }
 }
@@ -96,6 +97,7 @@ int batch(const BatchOptions& o) {
           render.scene = job.scene ? *job.scene : o.file + "#" + row.where;
           render.job = std::move(job);
           render.quiet = o.quiet;
+          render.strict = o.strict;
           render.progress = o.progress;
           if (o.threads) render.settings.threads = *o.threads;
           if (!o.quiet) fmt::print("job {}/{} ({}): {} -> {}\n", i + 1, jobs.size(), row.where, render.scene, row.output);
@@ -147,6 +149,7 @@ CLI::App* add_batch_command(CLI::App& app, BatchOptions& o) {
                   "Progress: bar (default; on a terminal, with the job's and the batch's share), plain ('progress 42.0% "
                   "job 2/5 batch 28.4%' lines on stdout) or none");
   cmd->add_option("--threads", o.threads, "Worker threads for every job; 0 = all cores")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--strict", o.strict, "Refuse missing or undecodable textures in every job (default: magenta)");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors and, when a job failed, the summary");
   return cmd;
 }

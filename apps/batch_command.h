@@ -16,6 +16,7 @@ struct BatchOptions {
   std::optional<std::string> progress;  // "bar", "plain" or "none"
   std::optional<int> threads;
   bool quiet = false;
+  bool strict = false;  // --strict for every job
 };
 
 CLI::App* add_batch_command(CLI::App& app, BatchOptions& options);

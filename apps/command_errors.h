@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "apps/exit_codes.h"
+#include "core/memory_limit.h"
 #include "io/errors.h"
 
 namespace prism {
@@ -34,6 +35,8 @@ int run_reporting_errors(Command&& command, std::string* message = nullptr) {
     return report(std::string("error: ") + e.what(), kExitInput);
   } catch (const OutputError& e) {
     return report(std::string("error: ") + e.what(), kExitOutput);
+  } catch (const MemoryLimitError& e) {
+    return report(std::string("error: ") + e.what(), kExitMemory);
   } catch (const std::bad_alloc&) {
     return report("error: out of memory", kExitInternal);
   } catch (const std::exception& e) {

@@ -11,6 +11,7 @@ enum ExitCode : int {
   kExitOutput = 4,    // an output that cannot be written
   kExitThreshold = 5, // `prism compare --threshold`: the image misses it
   kExitStopped = 6,   // a render stopped by SIGINT or SIGTERM: its output holds what was rendered, resumable
+  kExitMemory = 7,    // the work would need more memory than --memory-limit (estimated before allocating)
 };
 
 }  // namespace prism

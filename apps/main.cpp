@@ -8,6 +8,7 @@
 #include "apps/exit_codes.h"
 #include "apps/merge_command.h"
 #include "apps/render_command.h"
+#include "core/memory_limit.h"
 
 int main(int argc, char** argv) {
   using namespace prism;
@@ -17,8 +18,17 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit status: 0 success, 1 internal error, 2 usage error, 3 bad input (scene, job file, image),\n"
       "4 output not writable, 5 compare: the image misses --threshold, 6 render stopped by SIGINT/SIGTERM (its\n"
-      "output holds the samples so far; continue it with --resume).\n"
+      "output holds the samples so far; continue it with --resume), 7 the work would exceed --memory-limit.\n"
       "Run 'prism COMMAND --help' for the options of a command.");
+
+  std::string memory_limit;
+  app.add_option("--memory-limit", memory_limit,
+                 "Refuse scenes, textures and images whose estimated memory exceeds this (8G, 512M, bytes), with the "
+                 "estimate, before allocating; default: the memory available when prism starts. Any command accepts it")
+      ->check([](const std::string& text) {
+        return parse_byte_size(text) ? std::string() : "expected a size such as 8G, 512M or a byte count, got '" + text + "'";
+      });
+  app.fallthrough();
 
   RenderOptions render;
   CLI::App* cmd = app.add_subcommand("render", "Render a scene to an OpenEXR image (R,G,B,A and the AOVs asked for).");
@@ -107,6 +117,9 @@ int main(int argc, char** argv) {
   cmd->add_option("--progress", render.progress,
                   "Progress report: bar (default; on a terminal), plain ('progress 42.0%' lines on stdout, for farm "
                   "managers) or none");
+  cmd->add_flag("--strict", render.strict,
+                "Refuse textures that are missing, unreadable or of an unsupported format (default: warn and "
+                "render them magenta)");
   cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors (no warnings, progress bar or summary)");
 
   CompareOptions compare;
@@ -126,6 +139,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;
   }
+  if (!memory_limit.empty()) set_memory_limit(*parse_byte_size(memory_limit));
   if (cmd->parsed()) return run_render(render);
   if (compare_cmd->parsed()) return run_compare(compare);
   if (converge_cmd->parsed()) return run_converge(converge);

@@ -34,6 +34,7 @@ struct RenderOptions {
   std::optional<std::string> env;  // a map path, or "R,G,B" / "V" for a constant sky
   std::optional<float> env_intensity, env_rotation;
   bool quiet = false;
+  bool strict = false;  // missing or undecodable textures are errors, not magenta
 };
 
 // How a render runs inside a batch: the batch's stop flag (set by its signal handler) and where

@@ -98,6 +98,7 @@ std::string si(double v) {
 
 PreparedRender prepare_render(const RenderOptions& o) {
   Diagnostics diag;
+  diag.strict = o.strict;
   LoadedScene loaded = o.job ? load_job(*o.job, diag, environment_option(o))
                              : load_scene_source(o.scene, diag, environment_option(o));
   if (!o.quiet)

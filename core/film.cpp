@@ -1,5 +1,7 @@
 #include "core/film.h"
 
+#include "core/memory_limit.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -12,8 +14,15 @@ Film::Film(int width, int height, AovSet aovs) : width_(width), height_(height),
     throw std::invalid_argument("film size must be positive, got " + std::to_string(width) + "x" +
                                 std::to_string(height));
   const size_t n = size_t(width) * size_t(height);
-  pixels_.resize(n);
   for (Aov a : kAveraged) average_stride_ += aovs.has(a) ? 3 : 0;
+  // Accumulators, nearest-hit ids, a few Cryptomatte ids, and the float image written out.
+  const uint64_t per_pixel = sizeof(Pixel) + 8 * uint64_t(average_stride_) + 16 +
+                             (aovs.has(Aov::CryptoObject) || aovs.has(Aov::CryptoMaterial) ? 64 : 0) +
+                             4 * (4 + uint64_t(average_stride_));
+  require_memory(uint64_t(n) * per_pixel,
+                 "a " + std::to_string(width) + "x" + std::to_string(height) + " film" +
+                     (average_stride_ ? " with " + std::to_string(average_stride_) + " AOV channels" : ""));
+  pixels_.resize(n);
   average_sums_.assign(n * size_t(average_stride_), 0.0);
   if (aovs.has(Aov::Depth) || aovs.has(Aov::ObjectId) || aovs.has(Aov::MaterialId)) {
     nearest_depth_.assign(n, kBackgroundDepth);

@@ -14,9 +14,13 @@ std::vector<BatchJobText> parse_batch_file(const std::string& path) {
   if (!in) throw InputError(path, "", "cannot open the batch file");
   std::stringstream text;
   text << in.rdbuf();
+  return parse_batch_json(text.str(), path);
+}
+
+std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::string& path) {
   nlohmann::json root;
   try {
-    root = nlohmann::json::parse(text.str());
+    root = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path, "", std::string("not valid JSON: ") + e.what());
   }

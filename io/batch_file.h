@@ -17,5 +17,7 @@ struct BatchJobText {
 // one at a time by parse_job_json, so one bad job does not stop the others. Throws InputError
 // naming the file for a file that is not such a list.
 std::vector<BatchJobText> parse_batch_file(const std::string& path);
+// The same from the file's text; `path` names it in messages.
+std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::string& path);
 
 }  // namespace prism

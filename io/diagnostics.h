@@ -5,10 +5,24 @@
 #include <string>
 #include <vector>
 
+#include "io/errors.h"
+
 namespace prism {
 
 class Diagnostics {
  public:
+  // With strict set, content that would be replaced by a stand-in (a missing or undecodable
+  // texture) is an error instead.
+  bool strict = false;
+
+  // Reports that `element` of `file` cannot be used for `reason` and `stand_in` replaces it: a
+  // warning, or an InputError when strict.
+  void substitute(const std::string& file, const std::string& element, const std::string& reason,
+                  const std::string& stand_in) {
+    if (strict) throw InputError(file, element, reason + " (--strict)");
+    warn(element + ": " + reason + "; " + stand_in);
+  }
+
   // Records a warning; repeats of the same text are counted, not repeated.
   void warn(const std::string& message) {
     auto [it, inserted] = counts_.try_emplace(message, 0);

@@ -10,7 +10,11 @@ namespace prism {
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, const std::string& element, const std::string& reason)
-      : std::runtime_error(file + ": " + (element.empty() ? "" : element + ": ") + reason) {}
+      : std::runtime_error(file + ": " + (element.empty() ? "" : element + ": ") + reason), reason_(reason) {}
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string reason_;
 };
 
 // An output could not be written: message names the path and the reason.

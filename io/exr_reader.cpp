@@ -5,6 +5,7 @@
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputPart.h>
 #include <ImfIntAttribute.h>
 #include <ImfMatrixAttribute.h>
@@ -12,27 +13,65 @@
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <limits>
+#include <memory>
 #include <set>
 #include <string>
 
+#include "core/memory_limit.h"
 #include "io/errors.h"
 
 namespace prism {
 namespace {
 
-PixelWindow window(const Imath::Box2i& b) { return {b.min.x, b.min.y, b.max.x + 1, b.max.y + 1}; }
+// The window of an EXR box (inclusive corners), checked in 64 bits so a corner at INT_MAX or a
+// width past 2^31 is an error rather than an overflow.
+PixelWindow window(const Imath::Box2i& b, const std::string& path, const char* what) {
+  const int64_t w = int64_t(b.max.x) - b.min.x + 1, h = int64_t(b.max.y) - b.min.y + 1;
+  if (w <= 0 || h <= 0 || w > (int64_t(1) << 30) || h > (int64_t(1) << 30) || b.max.x == INT32_MAX || b.max.y == INT32_MAX)
+    throw InputError(path, what, "unusable window (" + std::to_string(b.min.x) + ", " + std::to_string(b.min.y) + ") to (" +
+                                     std::to_string(b.max.x) + ", " + std::to_string(b.max.y) + ")");
+  return {b.min.x, b.min.y, b.max.x + 1, b.max.y + 1};
+}
 
-ExrImage read(const std::string& path, bool with_pixels) {
+// An EXR file's bytes already in memory, as OpenEXR's input stream.
+class MemoryStream : public Imf::IStream {
+ public:
+  MemoryStream(const std::vector<unsigned char>& bytes, const std::string& name) : Imf::IStream(name.c_str()), bytes_(bytes) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || uint64_t(n) > bytes_.size() - std::min<uint64_t>(at_, bytes_.size()))
+      throw std::runtime_error("unexpected end of file");
+    std::memcpy(c, bytes_.data() + at_, size_t(n));
+    at_ += uint64_t(n);
+    return at_ < bytes_.size();
+  }
+  uint64_t tellg() override { return at_; }
+  void seekg(uint64_t pos) override { at_ = pos; }
+
+ private:
+  const std::vector<unsigned char>& bytes_;
+  uint64_t at_ = 0;
+};
+
+// Reads from `bytes` when given, else from the file at `path` (which names it in messages).
+ExrImage read(const std::string& path, bool with_pixels, const std::vector<unsigned char>* bytes = nullptr) {
   ExrImage image;
   try {
-    Imf::MultiPartInputFile file(path.c_str());
+    std::unique_ptr<MemoryStream> stream;
+    if (bytes) stream = std::make_unique<MemoryStream>(*bytes, path);
+    std::unique_ptr<Imf::MultiPartInputFile> opened =
+        stream ? std::make_unique<Imf::MultiPartInputFile>(*stream) : std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+    Imf::MultiPartInputFile& file = *opened;
     for (int p = 0; p < file.parts(); ++p) {
       const Imf::Header& header = file.header(p);
-      const PixelWindow dw = window(header.dataWindow());
+      const PixelWindow dw = window(header.dataWindow(), path, "dataWindow");
       if (p == 0) {
-        image.display = window(header.displayWindow());
+        image.display = window(header.displayWindow(), path, "displayWindow");
         image.data = dw;
         image.multipart = file.parts() > 1;
         switch (header.compression()) {
@@ -79,6 +118,7 @@ ExrImage read(const std::string& path, bool with_pixels) {
         image.channels.push_back(std::move(c));
       }
       if (!with_pixels) continue;
+      require_memory(uint64_t(pixels) * 4 * (image.channels.size() - first), path + ": part " + std::to_string(p) + "'s pixels");
       for (size_t i = first; i < image.channels.size(); ++i) {
         ExrChannel& c = image.channels[i];
         char* base;
@@ -109,5 +149,9 @@ ExrImage read(const std::string& path, bool with_pixels) {
 ExrImage read_exr(const std::string& path) { return read(path, true); }
 
 ExrImage read_exr_header(const std::string& path) { return read(path, false); }
+
+ExrImage read_exr_from_memory(const std::vector<unsigned char>& bytes, const std::string& name) {
+  return read(name, true, &bytes);
+}
 
 }  // namespace prism

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/exr_image.h"
 
@@ -14,5 +15,7 @@ namespace prism {
 ExrImage read_exr(const std::string& path);
 // The same without the pixels: windows, attributes, and channels with names and types only.
 ExrImage read_exr_header(const std::string& path);
+// read_exr from the bytes of a file already in memory; `name` names it in messages.
+ExrImage read_exr_from_memory(const std::vector<unsigned char>& bytes, const std::string& name);
 
 }  // namespace prism

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/memory_limit.h"
 #include "io/errors.h"
 
 namespace prism {
@@ -73,15 +74,17 @@ double decode(const unsigned char* p, int type, bool normalized) {
   }
 }
 
-// A strided run of `count` elements of `elem_size` bytes starting at `offset` in a buffer view.
+// A run of `count` elements of `elem_size` bytes starting at `offset` in a buffer view, spaced by
+// the view's byteStride when `strided` (vertex attributes) or packed (sparse indices and values).
 struct Strided {
   const unsigned char* base = nullptr;
   uint64_t stride = 0;
 };
 
 Strided view_range(const tinygltf::Model& model, int view, uint64_t offset, uint64_t count, uint64_t elem_size,
-                   uint64_t declared_stride, const std::string& file, const std::string& what) {
+                   bool strided, const std::string& file, const std::string& what) {
   auto [data, size] = buffer_view_bytes(model, view, file, what);
+  const uint64_t declared_stride = strided ? model.bufferViews[view].byteStride : 0;
   const uint64_t stride = declared_stride ? declared_stride : elem_size;
   if (declared_stride > 252)  // glTF 2.0 bufferView.byteStride maximum
     throw InputError(file, what, "bufferView " + std::to_string(view) + " byteStride " + std::to_string(declared_stride) +
@@ -114,10 +117,13 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int c
     throw InputError(file, where, "declares " + std::to_string(acc.count) + " elements, more than prism accepts");
   const int csize = component_size(acc.componentType);
   const uint64_t elem = uint64_t(csize) * comps;
+  // The ranges and the memory estimate are checked before anything is allocated, so a declared
+  // count is never trusted: doubles while decoding, then floats kept.
+  Strided s;
+  if (acc.bufferView >= 0) s = view_range(model, acc.bufferView, acc.byteOffset, acc.count, elem, true, file, where);
+  require_memory(acc.count * comps * (sizeof(double) + sizeof(float)), file + ": " + where);
   std::vector<double> out(acc.count * comps, 0.0);  // no bufferView: zeros (glTF 2.0 §3.6.2.3)
   if (acc.bufferView >= 0) {
-    const auto& bv = model.bufferViews[acc.bufferView];  // range checked by view_range first
-    const Strided s = view_range(model, acc.bufferView, acc.byteOffset, acc.count, elem, bv.byteStride, file, where);
     for (size_t i = 0; i < acc.count; ++i)
       for (int c = 0; c < comps; ++c)
         out[i * comps + c] = decode(s.base + i * s.stride + uint64_t(c) * csize, acc.componentType, acc.normalized);
@@ -130,9 +136,9 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int c
     if (isize == 0 || sp.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
       throw InputError(file, where, "sparse indices have an invalid component type");
     const Strided idx = view_range(model, sp.indices.bufferView, uint64_t(std::max(0, sp.indices.byteOffset)),
-                                   uint64_t(sp.count), uint64_t(isize), 0, file, where + " sparse indices");
+                                   uint64_t(sp.count), uint64_t(isize), false, file, where + " sparse indices");
     const Strided val = view_range(model, sp.values.bufferView, uint64_t(std::max(0, sp.values.byteOffset)),
-                                   uint64_t(sp.count), elem, 0, file, where + " sparse values");
+                                   uint64_t(sp.count), elem, false, file, where + " sparse values");
     for (int k = 0; k < sp.count; ++k) {
       const auto target = static_cast<uint64_t>(decode(idx.base + uint64_t(k) * isize, sp.indices.componentType, false));
       if (target >= acc.count)

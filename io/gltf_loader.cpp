@@ -11,9 +11,11 @@
 #include <map>
 #include <set>
 
+#include "core/memory_limit.h"
 #include "core/tangents.h"
 #include "io/errors.h"
 #include "io/gltf_accessor.h"
+#include "io/gltf_schema.h"
 #include "io/image_decode.h"
 
 namespace prism {
@@ -49,6 +51,15 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
   return true;
 }
 
+// The stand-in for an image that cannot be read: one magenta texel, bright enough to be seen.
+ImageDesc magenta_image() {
+  ImageDesc img;
+  img.width = img.height = 1;
+  img.channels = 4;
+  img.texels = {1.0f, 0.0f, 1.0f, 1.0f};
+  return img;
+}
+
 double number(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
 
 class Converter {
@@ -76,12 +87,8 @@ class Converter {
     throw InputError(file_, element, reason);
   }
 
+  // Unsupported extensionsRequired were refused by check_gltf_schema.
   void check_extensions() {
-    std::string unsupported;
-    for (const auto& e : model_.extensionsRequired)
-      if (!is_supported(e)) unsupported += (unsupported.empty() ? "" : ", ") + e;
-    if (!unsupported.empty())
-      fail("extensionsRequired", "prism does not support " + unsupported);
     for (const auto& e : model_.extensionsUsed)
       if (!is_supported(e)) diag_.warn("extension " + e + " is not supported yet and is ignored");
   }
@@ -291,10 +298,17 @@ class Converter {
           read_accessor_floats(model_, it->second, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, file_, where + " NORMAL");
       if (normals.size() != positions.size()) fail(where + " NORMAL", "count differs from POSITION");
       prim.normals.resize(n);
+      size_t zero = 0, not_unit = 0;
       for (size_t i = 0; i < n; ++i) {
         prim.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
         if (!is_finite(prim.normals[i])) fail(where + " NORMAL", "normal " + std::to_string(i) + " is not finite");
+        const float len = length(prim.normals[i]);
+        zero += len == 0;
+        not_unit += len != 0 && std::abs(len - 1.0f) > 1e-3f;  // glTF 2.0 §3.7.2.1: normals are unit vectors
       }
+      if (zero)
+        diag_.warn(where + " NORMAL: " + std::to_string(zero) + " zero-length normals; the face normal shades there");
+      if (not_unit) diag_.warn(where + " NORMAL: " + std::to_string(not_unit) + " normals are not unit length; renormalised");
     }
     if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
       const std::vector<float> uvs = read_accessor_floats(
@@ -336,6 +350,10 @@ class Converter {
       for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
     }
     prim.indices = triangulate(order, mode);
+    // What the scene keeps per vertex and per triangle, and Embree's BVH (about 64 bytes a triangle).
+    const uint64_t per_vertex = sizeof(Vec3) + (prim.normals.empty() ? 0 : sizeof(Vec3)) +
+                                (prim.uvs.empty() ? 0 : sizeof(Vec2)) + (sizeof(Vec3) + sizeof(float));  // + tangents
+    tally_.add(n * per_vertex + prim.indices.size() / 3 * (3 * sizeof(uint32_t) + 64), file_ + ": " + where);
     // glTF 2.0 §3.7.2.1: without TANGENT, tangents come from positions, normals and uvs.
     if (prim.tangents.empty() && !prim.normals.empty() && !prim.uvs.empty() && p.material >= 0 &&
         model_.materials[p.material].normalTexture.index >= 0)
@@ -535,14 +553,21 @@ class Converter {
     const tinygltf::Image& img = model_.images[gltf_image];
     const std::string where = quoted_name("image", gltf_image, img.name.empty() ? img.uri.substr(0, 64) : img.name);
     ImageDesc out;
-    if (img.bufferView >= 0) {
-      const auto [data, size] = buffer_view_bytes(model_, img.bufferView, file_, where);
+    // A bufferView past its buffer is a broken file (an error); image bytes that are missing or
+    // do not decode are a broken texture, which renders magenta so it shows (unless --strict).
+    const auto [data, size] = img.bufferView >= 0 ? buffer_view_bytes(model_, img.bufferView, file_, where)
+                                                  : std::make_pair(img.image.data(), img.image.size());
+    try {
+      if (size == 0)
+        fail(where, img.uri.rfind("data:", 0) == 0 || img.uri.empty() ? "no image data"
+                                                                       : "the file '" + img.uri + "' is missing or empty");
       out = decode_image(data, size, space, file_, where);
-    } else {
-      if (img.image.empty()) fail(where, "no image data (missing file or empty data URI)");
-      out = decode_image(img.image.data(), img.image.size(), space, file_, where);
+    } catch (const InputError& e) {
+      diag_.substitute(file_, where, e.reason(), "its textures render magenta");
+      out = magenta_image();
     }
     out.name = img.name.empty() ? img.uri : img.name;
+    tally_.add(out.texels.size() * sizeof(float), file_ + ": " + where);
     const int index = static_cast<int>(desc_.images.size());
     desc_.images.push_back(std::move(out));
     image_map_[key] = index;
@@ -557,6 +582,7 @@ class Converter {
   std::map<int, int> mesh_map_;
   std::map<std::pair<int, bool>, int> texture_map_, image_map_;
   std::vector<std::pair<int, CameraDesc>> cameras_by_node_;
+  MemoryTally tally_;
 };
 
 bool is_glb(const std::vector<unsigned char>& bytes) {
@@ -569,10 +595,23 @@ SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const s
                                 const std::string& name, Diagnostics& diag) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded_image, nullptr);
+  if (base_dir.empty()) {
+    // No file system: a reference to an external file is treated as a missing file.
+    tinygltf::FsCallbacks none{};
+    none.FileExists = [](const std::string&, void*) { return false; };
+    none.ExpandFilePath = [](const std::string& path, void*) { return path; };
+    none.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+      if (err) *err += "external file '" + path + "' is not available when loading from memory\n";
+      return false;
+    };
+    none.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; };
+    loader.SetFsCallbacks(none);
+  }
   tinygltf::Model model;
   std::string err, warn;
   bool ok;
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(name, "", "file is larger than 4 GiB");
+  check_gltf_schema(bytes, name);
   if (is_glb(bytes)) {
     ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base_dir);
   } else {
@@ -584,7 +623,10 @@ SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const s
     return s;
   };
   if (!ok || !err.empty()) throw InputError(name, "", "not a loadable glTF file: " + trim(err.empty() ? warn : err));
-  if (!warn.empty()) diag.warn("glTF parser: " + trim(warn));
+  for (size_t start = 0, end; start < warn.size(); start = end + 1) {
+    end = std::min(warn.find('\n', start), warn.size());
+    if (const std::string line = trim(warn.substr(start, end - start)); !line.empty()) diag.warn("glTF parser: " + line);
+  }
   return Converter(model, name, diag).run();
 }
 

@@ -14,7 +14,8 @@ namespace prism {
 // reported once each through `diag`; errors throw InputError naming the file and element.
 SceneDesc load_gltf(const std::string& path, Diagnostics& diag);
 
-// The same from bytes already in memory; `base_dir` resolves external buffers and images.
+// The same from bytes already in memory; `base_dir` resolves external buffers and images, and
+// an empty `base_dir` means no file system at all (external references are missing files).
 SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const std::string& base_dir,
                                 const std::string& name, Diagnostics& diag);
 

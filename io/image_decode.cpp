@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/memory_limit.h"
 #include "io/errors.h"
 
 namespace prism {
@@ -28,6 +29,8 @@ ImageDesc read_from(OIIO::ImageInput* in, ColorSpace space, const std::string& f
       uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexels)
     throw InputError(file, element, "image has an unusable size " + std::to_string(spec.width) + "x" +
                                         std::to_string(spec.height) + "x" + std::to_string(spec.nchannels));
+  require_memory(uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(std::min(spec.nchannels, 4)) * sizeof(float),
+                 element.empty() ? file : file + ": " + element);
   ImageDesc img;
   img.width = spec.width;
   img.height = spec.height;

@@ -58,7 +58,7 @@ TEST(Sobol, EveryDrawOfAPixelIsStratified) {
       std::vector<std::vector<Vec2>> points(draws, std::vector<Vec2>(n));
       for (uint32_t s = 0; s < n; ++s) {
         sampler.start_pixel_sample(x, y, s);
-        for (int d = 0; d < draws; ++d) points[d][s] = d % 2 == 0 ? sampler.next_2d() : Vec2(sampler.next_1d(), 0.5f);
+        for (int d = 0; d < draws; ++d) points[d][s] = d % 2 == 0 ? sampler.next_2d() : Vec2{sampler.next_1d(), 0.5f};
       }
       for (int d = 0; d < draws; ++d) {
         const bool two_d = d % 2 == 0;
@@ -116,7 +116,7 @@ TEST(Samplers, DimensionsAreUniformAndIndependentAcrossPixels) {
         for (int s = 0; s < 8; ++s, ++n) {
           sampler->start_pixel_sample(x, y, uint64_t(s));
           for (int d = 0; d < kDraws; ++d) {
-            const Vec2 p = d % 2 == 0 ? sampler->next_2d() : Vec2(sampler->next_1d(), sampler->next_1d());
+            const Vec2 p = d % 2 == 0 ? sampler->next_2d() : Vec2{sampler->next_1d(), sampler->next_1d()};
             hist[size_t(d)][size_t(int(p.y * kBins) * kBins + int(p.x * kBins))] += 1;
           }
         }

@@ -120,8 +120,8 @@ TEST(DielectricExtremes, SmoothInterfaceConservesEnergy) {
         };
         // u_lobe = 0 picks reflection and u_lobe -> 1 transmission, whenever each has weight.
         double total = 0;
-        if (const auto r = glass.sample(wo, 0.0f, Vec2(0.5f, 0.5f)); r && !r->transmission) total += weight(*r);
-        if (const auto t = glass.sample(wo, 0x1.fffffep-1f, Vec2(0.5f, 0.5f)); t && t->transmission) total += weight(*t);
+        if (const auto r = glass.sample(wo, 0.0f, Vec2{0.5f, 0.5f}); r && !r->transmission) total += weight(*r);
+        if (const auto t = glass.sample(wo, 0x1.fffffep-1f, Vec2{0.5f, 0.5f}); t && t->transmission) total += weight(*t);
         EXPECT_NEAR(total, 1.0, 2e-6) << "ior " << n << " cos " << c << " side " << side;
       }
 }

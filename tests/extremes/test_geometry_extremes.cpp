@@ -367,7 +367,7 @@ TEST(GeometryExtremes, ThinGlassSlabTransmitsItsClosedForm) {
         }
       }
       const Scene scene(std::move(desc));
-      auto ray_at = [&](int i) {
+      auto ray_at = [&, s = s, offset = offset](int i) {  // clang 14 cannot capture structured bindings
         return Ray(Vec3(0.01f * float(i % 97), -0.02f * float(i % 89), 2.0f) * s + offset - scene.origin(), Vec3(0, 0, -1));
       };
       IndependentSampler sampler(3);

@@ -99,9 +99,9 @@ SpawnCounts spawn_from_tetrahedra() {
       ++rays;
       const Vec3 out = dot(hit.ng, from - hit.p) > 0 ? hit.ng : -hit.ng;
       const Vec3 dir = Frame::from_normal(out).to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}));
-      auto fail = [&](const std::string& what) {
-        if (first_failure.empty())
-          first_failure = what + ": distance " + std::to_string(distance) + " size " + std::to_string(s) + " squash " +
+      auto fail = [&](const std::string& what) {  // counts.: clang 14 cannot capture structured bindings
+        if (counts.first_failure.empty())
+          counts.first_failure = what + ": distance " + std::to_string(distance) + " size " + std::to_string(s) + " squash " +
                           std::to_string(a1) + ", " + std::to_string(a2);
       };
       SurfaceHit again;

@@ -1,0 +1,78 @@
+// The memory limit: sizes parse and print as a user writes them, estimates past the limit are
+// refused with both sizes before anything is allocated, and the loader sums a scene's parts.
+#include <gtest/gtest.h>
+
+#include "core/film.h"
+#include "core/memory_limit.h"
+#include "io/gltf_loader.h"
+
+namespace prism {
+namespace {
+
+// Sets the limit for one test and restores the previous one.
+class ScopedMemoryLimit {
+ public:
+  explicit ScopedMemoryLimit(uint64_t bytes) : previous_(memory_limit()) { set_memory_limit(bytes); }
+  ~ScopedMemoryLimit() { set_memory_limit(previous_); }
+
+ private:
+  uint64_t previous_;
+};
+
+TEST(MemoryLimit, SizesParseAndPrint) {
+  EXPECT_EQ(parse_byte_size("8G"), uint64_t(8) << 30);
+  EXPECT_EQ(parse_byte_size("512M"), uint64_t(512) << 20);
+  EXPECT_EQ(parse_byte_size("64k"), uint64_t(64) << 10);
+  EXPECT_EQ(parse_byte_size("1.5GiB"), uint64_t(3) << 29);
+  EXPECT_EQ(parse_byte_size("1000"), uint64_t(1000));
+  for (const char* bad : {"", "0", "-1G", "lots", "8Q", "8G more", "nan"}) EXPECT_FALSE(parse_byte_size(bad)) << bad;
+  EXPECT_EQ(format_bytes(100), "100 bytes");
+  EXPECT_EQ(format_bytes(uint64_t(3) << 29), "1.5 GiB");
+  EXPECT_EQ(format_bytes(uint64_t(640) << 20), "640 MiB");
+}
+
+TEST(MemoryLimit, TheDefaultIsTheMemoryTheSystemHas) {
+  EXPECT_GT(default_memory_limit(), uint64_t(64) << 20);
+}
+
+TEST(MemoryLimit, AFilmPastTheLimitIsRefusedWithItsEstimate) {
+  const ScopedMemoryLimit limit(uint64_t(64) << 20);
+  EXPECT_NO_THROW(Film(256, 256));
+  try {
+    Film film(8192, 8192);
+    FAIL() << "expected a MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_STREQ(e.what(), "a 8192x8192 film needs about 6.0 GiB, more than the memory limit of 64 MiB (--memory-limit)");
+  }
+}
+
+TEST(MemoryLimit, TheTallyAddsAScenesParts) {
+  const ScopedMemoryLimit limit(1000);
+  MemoryTally tally;
+  tally.add(600, "mesh 0");
+  try {
+    tally.add(600, "mesh 1");
+    FAIL() << "expected a MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_STREQ(e.what(), "mesh 1 brings the estimate to about 1.2 KiB, more than the memory limit of 1000 bytes (--memory-limit)");
+  }
+}
+
+// A declared 2^28 zero vertices (an accessor without a bufferView) is refused before its 9 GiB
+// are allocated; under a roomy limit the same loader reads the valid triangle.
+TEST(MemoryLimit, TheLoaderRefusesAnAccessorPastTheLimit) {
+  const ScopedMemoryLimit limit(uint64_t(1) << 30);
+  Diagnostics diag;
+  EXPECT_NO_THROW(load_gltf(PRISM_SOURCE_DIR "/tests/broken/triangle.gltf", diag));
+  try {
+    load_gltf(PRISM_SOURCE_DIR "/tests/broken/absurd-count-no-view.gltf", diag);
+    FAIL() << "expected a MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("POSITION (accessor 0) needs about 9.0 GiB, more than the memory limit of 1.0 GiB"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace prism

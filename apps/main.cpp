@@ -1,6 +1,8 @@
 // prism command line: parses arguments and dispatches to the commands.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
+
 #include "apps/batch_command.h"
 #include "apps/bench_command.h"
 #include "apps/compare_command.h"
@@ -12,6 +14,9 @@
 
 int main(int argc, char** argv) {
   using namespace prism;
+  // Past a file-size limit (ulimit -f) a write then fails with EFBIG, which the writers report
+  // and clean up after, instead of SIGXFSZ killing prism and leaving its temporary file behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"prism " PRISM_VERSION ": a production-style CPU path tracer. glTF 2.0 scenes in, OpenEXR images out."};
   app.set_version_flag("--version", "prism " PRISM_VERSION);
   app.require_subcommand(1);

@@ -11,6 +11,7 @@
 #include "core/render_origin.h"
 #include "core/spawn.h"
 #include "core/sphere_geometry.h"
+#include "core/tsan_annotations.h"
 #include "core/tangents.h"
 
 namespace prism {
@@ -210,6 +211,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
     top_geometries_.push_back({});
   }
   rtcCommitScene(top_);
+  tsan_acquire(&sphere_geometry_);  // the build threads' sphere_bounds calls are over
   throw_on_embree_error("building the scene of " + desc_.source);
   emitters_ = Emitters(desc_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/constants.h"
+#include "core/tsan_annotations.h"
 
 namespace prism {
 
@@ -44,6 +45,7 @@ namespace {
 const SphereGeometry& geometry_of(void* user) { return *static_cast<const SphereGeometry*>(user); }
 
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  tsan_acquire(args->geometryUserPtr);  // Embree's build threads: see core/tsan_annotations.h
   const SphereDesc& s = (*geometry_of(args->geometryUserPtr).spheres)[args->primID];
   // Widen by a few ulps so float rounding of centre +- radius never clips the sphere.
   const float pad = 4.0f * std::numeric_limits<float>::epsilon();
@@ -54,6 +56,7 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_x = s.center.x + extent.x;
   args->bounds_o->upper_y = s.center.y + extent.y;
   args->bounds_o->upper_z = s.center.z + extent.z;
+  tsan_release(args->geometryUserPtr);  // ...and is done before rtcCommitScene returns
 }
 
 Ray ray_of(const RTCRay& r) {
@@ -115,6 +118,7 @@ void attach_spheres(RTCDevice device, RTCScene scene, const SphereGeometry& geom
   rtcSetGeometryIntersectFunction(geom, sphere_intersect);
   rtcSetGeometryOccludedFunction(geom, sphere_occluded);
   rtcCommitGeometry(geom);
+  tsan_release(user);  // the spheres are complete before Embree's threads read their bounds
   rtcAttachGeometryByID(scene, geom, id);
   rtcReleaseGeometry(geom);
 }

@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <limits>
 #include <memory>
@@ -25,6 +27,7 @@
 
 #include "core/memory_limit.h"
 #include "io/errors.h"
+#include "io/exr_header_scan.h"
 
 namespace prism {
 namespace {
@@ -63,7 +66,17 @@ ExrImage read(const std::string& path, bool with_pixels, const std::vector<unsig
   ExrImage image;
   try {
     std::unique_ptr<MemoryStream> stream;
-    if (bytes) stream = std::make_unique<MemoryStream>(*bytes, path);
+    if (bytes) {
+      std::istringstream in(std::string(bytes->begin(), bytes->end()));
+      scan_exr_headers(in, bytes->size(), path);
+      stream = std::make_unique<MemoryStream>(*bytes, path);
+    } else {
+      std::ifstream in(path, std::ios::binary | std::ios::ate);
+      if (!in) throw InputError(path, "", "cannot open for reading");
+      const uint64_t size = uint64_t(in.tellg());
+      in.seekg(0);
+      scan_exr_headers(in, size, path);
+    }
     std::unique_ptr<Imf::MultiPartInputFile> opened =
         stream ? std::make_unique<Imf::MultiPartInputFile>(*stream) : std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     Imf::MultiPartInputFile& file = *opened;

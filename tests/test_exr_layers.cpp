@@ -4,7 +4,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -121,6 +123,51 @@ TEST(ExrLayers, UnreadableFilesAreInputErrorsNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("junk.exr"), std::string::npos) << e.what();
   }
   EXPECT_THROW(read_exr(dir + "/missing.exr"), InputError);
+}
+
+// OpenEXR allocates what a header claims before it finds the file short: the fuzzer found an
+// 805-byte file whose string attribute claims 1.05 GiB (14 s and 1.4 GB to refuse). The
+// header pre-scan refuses such claims first, from a file and from memory alike.
+TEST(ExrLayers, HeaderClaimsPastTheEndOfTheFileAreRefusedBeforeAllocating) {
+  const std::string path = PRISM_SOURCE_DIR "/tests/fuzz/regressions/exr/huge-string-attribute.exr";
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (bool from_memory : {false, true}) {
+    try {
+      from_memory ? read_exr_from_memory(bytes, path) : read_exr(path);
+      FAIL() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("huge-string-attribute.exr: part 0 attribute 'prism/projection': declares 1124073483 bytes"), std::string::npos)
+          << e.what();
+    }
+  }
+  // A 64x2^29 data window in a file of a few hundred bytes, and a tiled single-part file.
+  const std::string dir = test::make_temp_dir("layers");
+  ExrImage tiny;
+  tiny.display = tiny.data = {0, 0, 4, 4};
+  tiny.channels.push_back({"R", ExrPixelType::Float, std::vector<float>(16, 0.5f), {}});
+  write_exr(dir + "/tiny.exr", tiny);
+  std::ifstream tiny_in(dir + "/tiny.exr", std::ios::binary);
+  std::vector<unsigned char> tall((std::istreambuf_iterator<char>(tiny_in)), std::istreambuf_iterator<char>());
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const auto at = std::search(tall.begin(), tall.end(), key.begin(), key.end()) - tall.begin();
+  ASSERT_LT(size_t(at), tall.size());
+  const int32_t y1 = (1 << 29) - 1;
+  std::memcpy(&tall[size_t(at) + key.size() + 4 + 12], &y1, 4);
+  EXPECT_THROW(
+      {
+        try {
+          read_exr_from_memory(tall, "tall.exr");
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("lines need a larger offset table than the whole file"), std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      InputError);
+  std::vector<unsigned char> tiled = bytes;
+  tiled[5] |= 0x02;  // the tiled flag (0x200) of the version field
+  EXPECT_THROW(read_exr_from_memory(tiled, "tiled.exr"), InputError);
 }
 
 // Row vector p (x, y, z, 1) times m, divided by w.

@@ -236,6 +236,24 @@ TEST_F(GltfLoaderTest, BrokenFilesGiveClearErrors) {
   }
 }
 
+// A texture whose image is missing or does not decode renders magenta (one texel) with a
+// warning naming the image; with strict diagnostics (--strict) it is an error.
+TEST_F(GltfLoaderTest, BrokenTexturesRenderMagentaUnlessStrict) {
+  for (const char* name : {"image-missing-file.gltf", "image-not-decodable.gltf"}) {
+    const std::string path = std::string(PRISM_SOURCE_DIR "/tests/broken/") + name;
+    Diagnostics diag;
+    const SceneDesc s = load_gltf(path, diag);
+    ASSERT_EQ(s.images.size(), 1u) << name;
+    EXPECT_EQ(s.images[0].width, 1);
+    EXPECT_EQ(s.images[0].texels, (std::vector<float>{1, 0, 1, 1})) << name;
+    EXPECT_TRUE(diag.contains("image 0")) << name;
+    EXPECT_TRUE(diag.contains("its textures render magenta")) << name;
+    Diagnostics strict;
+    strict.strict = true;
+    EXPECT_THROW(load_gltf(path, strict), InputError) << name;
+  }
+}
+
 TEST_F(GltfLoaderTest, MissingOrGarbageFilesAreInputErrors) {
   EXPECT_THROW(load_gltf(dir_ + "/absent.gltf", diag_), InputError);
   std::ofstream(dir_ + "/garbage.gltf") << "{ this is not json";

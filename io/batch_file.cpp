@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/errors.h"
+#include "io/json_parse.h"
 
 namespace prism {
 
@@ -18,12 +19,7 @@ std::vector<BatchJobText> parse_batch_file(const std::string& path) {
 }
 
 std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::string& path) {
-  nlohmann::json root;
-  try {
-    root = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, "", std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json root = parse_json(text, path);
   nlohmann::json defaults = nlohmann::json::object(), jobs;
   if (root.is_array()) {
     jobs = root;

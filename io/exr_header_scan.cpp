@@ -95,12 +95,52 @@ class Scanner {
         read(value.data(), uint64_t(size), "type");
         if (value == "tiledimage" || value.rfind("deep", 0) == 0) fail(where, "only scanline images can be read (this part is " + value + ")");
       } else {
-        skip(uint64_t(size));
+        value(type, uint64_t(size), where);
       }
     }
   }
 
+  // OpenEXR reads a known type by its own layout, not by the declared size: a box2i is 16 bytes
+  // whatever the size says, a channel list runs to its null name, a string vector holds
+  // length-prefixed strings it allocates by their lengths. So each value must be exactly its
+  // declared size, with every inner length inside it, or OpenEXR and this scan part ways.
+  void value(const std::string& type, uint64_t size, const std::string& where) {
+    static const std::pair<const char*, uint64_t> kFixed[] = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"double", 8}, {"envmap", 1},
+        {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64},
+        {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16},
+        {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"deepImageState", 1}};
+    for (const auto& [name, bytes] : kFixed)
+      if (type == name) {
+        if (size != bytes) fail(where, "a " + type + " is " + std::to_string(bytes) + " bytes, not " + std::to_string(size));
+        return skip(size);
+      }
+    const uint64_t end = at_ + size;
+    if (type == "chlist") {
+      // Entries: name, null, then pixel type (4), pLinear (1), reserved (3), x and y sampling (8).
+      for (;;) {
+        if (text(255, "channel name").empty()) break;
+        skip(16);
+        if (at_ > end) break;
+      }
+    } else if (type == "preview") {
+      const uint64_t w = u32("preview width"), h = u32("preview height");
+      if (8 + w * h * 4 != size) fail(where, "a " + std::to_string(w) + "x" + std::to_string(h) + " preview is not " + std::to_string(size) + " bytes");
+      skip(size - 8);
+    } else if (type == "stringvector") {
+      while (at_ < end) {
+        const int32_t length = i32("string length");
+        if (length < 0 || at_ + uint64_t(length) > end) fail(where, "holds a string that runs past the attribute");
+        skip(uint64_t(length));
+      }
+    } else {
+      skip(size);
+    }
+    if (at_ != end) fail(where, "its " + type + " value does not fill its declared " + std::to_string(size) + " bytes");
+  }
+
   void skip(uint64_t n) {
+    if (n > remaining()) fail("", "the file ends inside the header");
     in_.seekg(std::streamoff(n), std::ios::cur);
     if (!in_) fail("", "cannot read the header");
     at_ += n;

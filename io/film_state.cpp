@@ -34,8 +34,22 @@ void set_pixel_doubles(Film& film, int x, int y, const double* in) {
   for (int k = 0; k < film.average_slots(); ++k) film.average_sums(x, y)[k] = in[8 + k];
 }
 
-const ExrChannel& require(const ExrImage& image, const std::string& name, const std::string& path) {
+// Channel `name` when the image has it, checked to hold its pixels as `type` says: the film
+// state in uint bits, the layers in float values (half widens to float on reading). A file
+// whose channel has another type (a damaged or foreign file) is an InputError, not a read of
+// the wrong array.
+const ExrChannel* find(const ExrImage& image, const std::string& name, ExrPixelType type, const std::string& path) {
   const ExrChannel* c = image.find(name);
+  if (!c) return nullptr;
+  const size_t n = size_t(image.data.width()) * size_t(image.data.height());
+  const bool bits = type == ExrPixelType::Uint;
+  if ((c->type == ExrPixelType::Uint) != bits || (bits ? c->bits.size() : c->values.size()) != n)
+    throw InputError(path, "channel " + name, bits ? "expected uint pixels (prism's film state)" : "expected half or float pixels");
+  return c;
+}
+
+const ExrChannel& require(const ExrImage& image, const std::string& name, ExrPixelType type, const std::string& path) {
+  const ExrChannel* c = find(image, name, type, path);
   if (!c) throw InputError(path, "channel " + name, "missing: the file was not written by a prism render with these layers");
   return *c;
 }
@@ -71,13 +85,14 @@ void add_id_count_state(const std::vector<PixelIdCounts>& pixels, const std::str
 
 // The counts add_id_count_state wrote, or nullopt when the file has none (an image written
 // without state, or a film without these ids).
-std::optional<std::vector<PixelIdCounts>> id_count_state(const ExrImage& image, const std::string& name, size_t n) {
+std::optional<std::vector<PixelIdCounts>> id_count_state(const ExrImage& image, const std::string& name, size_t n,
+                                                         const std::string& path) {
   if (!image.find(kPrefix + name + "0.id")) return std::nullopt;
   std::vector<PixelIdCounts> pixels(n);
   for (size_t k = 0;; ++k) {
     const std::string base = kPrefix + name + std::to_string(k);
-    const ExrChannel* ids = image.find(base + ".id");
-    const ExrChannel* counts = image.find(base + ".count");
+    const ExrChannel* ids = find(image, base + ".id", ExrPixelType::Uint, path);
+    const ExrChannel* counts = find(image, base + ".count", ExrPixelType::Uint, path);
     if (!ids || !counts) break;
     for (size_t i = 0; i < n; ++i)
       if (counts->bits[i] > 0) add_id_count(pixels[i], ids->bits[i], counts->bits[i]);
@@ -136,7 +151,7 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
     std::vector<const ExrChannel*> channels;
     for (int j = 0; j < k; ++j)
       for (const char* half : {"hi", "lo"})
-        channels.push_back(&require(image, kPrefix + std::to_string(j) + half, path));
+        channels.push_back(&require(image, kPrefix + std::to_string(j) + half, ExrPixelType::Uint, path));
     std::vector<double> d(static_cast<size_t>(k));
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
@@ -148,9 +163,9 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
         counts[i] = film.sample_count(x, y);
       }
     if (film.tracks_nearest()) {
-      const ExrChannel& depth = require(image, std::string(kPrefix) + "nearestDepth", path);
-      const ExrChannel& object = require(image, std::string(kPrefix) + "nearestObject", path);
-      const ExrChannel& material = require(image, std::string(kPrefix) + "nearestMaterial", path);
+      const ExrChannel& depth = require(image, std::string(kPrefix) + "nearestDepth", ExrPixelType::Uint, path);
+      const ExrChannel& object = require(image, std::string(kPrefix) + "nearestObject", ExrPixelType::Uint, path);
+      const ExrChannel& material = require(image, std::string(kPrefix) + "nearestMaterial", ExrPixelType::Uint, path);
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
           const size_t i = size_t(y) * w + x;
@@ -161,7 +176,7 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
     }
   } else {
     // Counts: the spp layer, else the uniform count the header records.
-    if (const ExrChannel* spp = image.find("spp.V")) {
+    if (const ExrChannel* spp = find(image, "spp.V", ExrPixelType::Float, path)) {
       for (size_t i = 0; i < n; ++i) counts[i] = uint64_t(spp->values[i]);
     } else {
       const ExrAttribute* a = image.attribute("prism/sppMax");
@@ -169,9 +184,11 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
         throw InputError(path, "prism/sppMax", "missing: no spp layer or sample count in the header");
       std::fill(counts.begin(), counts.end(), uint64_t(std::get<int>(a->second)));
     }
-    const ExrChannel* rgba[4] = {&require(image, "R", path), &require(image, "G", path), &require(image, "B", path),
-                                 &require(image, "A", path)};
-    const ExrChannel* variance[3] = {image.find("variance.R"), image.find("variance.G"), image.find("variance.B")};
+    const ExrChannel* rgba[4] = {&require(image, "R", ExrPixelType::Float, path), &require(image, "G", ExrPixelType::Float, path),
+                                 &require(image, "B", ExrPixelType::Float, path), &require(image, "A", ExrPixelType::Float, path)};
+    const ExrChannel* variance[3] = {find(image, "variance.R", ExrPixelType::Float, path),
+                                     find(image, "variance.G", ExrPixelType::Float, path),
+                                     find(image, "variance.B", ExrPixelType::Float, path)};
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
@@ -189,16 +206,16 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
       const int slot = film.average_slot(l.aov);
       if (slot < 0) continue;
       for (int c = 0; c < 3; ++c) {
-        const ExrChannel& ch = require(image, std::string(l.layer) + "." + l.components[c], path);
+        const ExrChannel& ch = require(image, std::string(l.layer) + "." + l.components[c], ExrPixelType::Float, path);
         for (int y = 0; y < h; ++y)
           for (int x = 0; x < w; ++x)
             film.average_sums(x, y)[slot + c] = double(ch.values[size_t(y) * w + x]) * double(counts[size_t(y) * w + x]);
       }
     }
     if (film.tracks_nearest()) {
-      const ExrChannel* depth = image.find("Z");
-      const ExrChannel* object = image.find("object_id.V");
-      const ExrChannel* material = image.find("material_id.V");
+      const ExrChannel* depth = find(image, "Z", ExrPixelType::Float, path);
+      const ExrChannel* object = find(image, "object_id.V", ExrPixelType::Float, path);
+      const ExrChannel* material = find(image, "material_id.V", ExrPixelType::Float, path);
       for (size_t i = 0; i < n; ++i) {
         const int x = int(i % size_t(w)), y = int(i / size_t(w));
         if (depth) film.nearest_depth(x, y) = depth->values[i];
@@ -210,7 +227,7 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
   try {
     // Exact counts from the state when there are any, else from the layers' top ranks.
     auto id_counts = [&](const std::string& state, const std::string& layer) {
-      std::optional<std::vector<PixelIdCounts>> stored = id_count_state(image, state, n);
+      std::optional<std::vector<PixelIdCounts>> stored = id_count_state(image, state, n, path);
       return stored ? std::move(*stored) : cryptomatte_counts(image, layer, counts);
     };
     if (film.aovs().has(Aov::CryptoObject)) film.crypto_objects() = id_counts("cryptoObject", "CryptoObject");

@@ -10,6 +10,7 @@
 
 #include "io/errors.h"
 #include "io/gltf_loader.h"
+#include "io/json_parse.h"
 
 namespace prism {
 namespace {
@@ -406,14 +407,7 @@ void Obj::check_ref(const json& v, const std::string& where, const char* array) 
 }  // namespace
 
 void check_gltf_schema(const std::vector<unsigned char>& bytes, const std::string& file) {
-  json doc;
-  try {
-    doc = json::parse(json_text(bytes, file));
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    if (auto close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
-    throw InputError(file, "", "not valid JSON: " + what);
-  }
+  const json doc = parse_json(json_text(bytes, file), file);
   Schema(doc, file).run();
 }
 

@@ -11,6 +11,7 @@
 
 #include "io/duration_text.h"
 #include "io/errors.h"
+#include "io/json_parse.h"
 #include "io/exr_image.h"
 #include "io/image_decode.h"
 
@@ -320,13 +321,7 @@ void apply_environment(const EnvironmentSpec& spec, SceneDesc& scene) {
 }
 
 JobFile parse_job_json(const std::string& text, const std::string& path, Diagnostics& diag) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "", std::string("invalid JSON: ") + e.what());
-  }
-  return JobParser(path, diag).parse(root);
+  return JobParser(path, diag).parse(parse_json(text, path));
 }
 
 JobFile parse_job_file(const std::string& path, Diagnostics& diag) {

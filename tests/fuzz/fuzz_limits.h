@@ -1,4 +1,4 @@
-// Shared set-up of the fuzz targets: a memory limit well under libFuzzer's RSS limit (2 GiB).
+// Shared set-up of the fuzz targets: a memory limit far under libFuzzer's RSS limit (2 GiB).
 #pragma once
 
 #include "core/memory_limit.h"
@@ -9,7 +9,7 @@ namespace prism::fuzz {
 // prism's own estimates (tested), instead of being reported by libFuzzer as out-of-memory.
 inline void set_fuzz_limits() {
   static const bool once = [] {
-    set_memory_limit(uint64_t(256) << 20);
+    set_memory_limit(uint64_t(32) << 20);
     return true;
   }();
   (void)once;

@@ -102,17 +102,12 @@ int merge(const MergeOptions& o) {
     if (std::find(std::begin(dropped), std::end(dropped), a.first) == std::end(dropped) && a.first.rfind("prism.state", 0) != 0)
       out.attributes.push_back(a);
   }
-  uint64_t lo = ~uint64_t(0), hi = 0, total = 0;
-  for (int y = 0; y < merged.height(); ++y)
-    for (int x = 0; x < merged.width(); ++x) {
-      lo = std::min(lo, merged.sample_count(x, y));
-      hi = std::max(hi, merged.sample_count(x, y));
-      total += merged.sample_count(x, y);
-    }
+  const Film::SampleCounts counts = merged.sample_counts();
+  const uint64_t lo = counts.min, hi = counts.max;
   out.attributes.push_back({"prism/spp", int(hi)});
   out.attributes.push_back({"prism/sppMin", int(lo)});
   out.attributes.push_back({"prism/sppMax", int(hi)});
-  out.attributes.push_back({"prism/sppMean", double(total) / (double(merged.width()) * merged.height())});
+  out.attributes.push_back({"prism/sppMean", double(counts.total) / (double(merged.width()) * merged.height())});
   // Complete only when every part is: a stopped or checkpointed part leaves the merge unfinished too.
   const bool complete = std::all_of(parts.begin(), parts.end(),
                                     [](const Part& p) { return attribute_text(p.image, "prism/status") == "complete"; });

@@ -134,9 +134,7 @@ int render(const RenderOptions& o, const BatchContext& batch) {
   }
   if (settings.aovs.has(Aov::CryptoObject) || settings.aovs.has(Aov::CryptoMaterial))
     film.set_cryptomatte_ids(object_cryptomatte_ids(scene.desc()), material_cryptomatte_ids(scene.desc()));
-  uint64_t resumed_samples = 0;
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) resumed_samples += film.sample_count(x, y);
+  const uint64_t resumed_samples = film.sample_counts().total;
 
   RenderProgress progress;
   RenderStats stats;

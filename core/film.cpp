@@ -97,6 +97,16 @@ std::vector<float> Film::resolve_rgba() const {
   return out;
 }
 
+Film::SampleCounts Film::sample_counts() const {
+  SampleCounts c{~uint64_t(0), 0, 0};
+  for (const Pixel& p : pixels_) {
+    c.min = std::min(c.min, p.count);
+    c.max = std::max(c.max, p.count);
+    c.total += p.count;
+  }
+  return c;
+}
+
 std::vector<float> Film::resolve_counts() const {
   std::vector<float> out(pixels_.size());
   for (size_t i = 0; i < pixels_.size(); ++i) out[i] = static_cast<float>(pixels_[i].count);

@@ -53,6 +53,11 @@ class Film {
   // Mean of the samples of pixel (x, y) as RGBA; zero for a pixel with no samples.
   void mean(int x, int y, float rgba[4]) const;
   uint64_t sample_count(int x, int y) const { return pixel(x, y).count; }
+  // The fewest and most samples any pixel has, and their total.
+  struct SampleCounts {
+    uint64_t min = 0, max = 0, total = 0;
+  };
+  SampleCounts sample_counts() const;
   // Unbiased estimate of the variance of the pixel's mean (sample variance / n) per colour
   // channel; zero with fewer than two samples.
   Rgb variance_of_mean(int x, int y) const;

@@ -118,22 +118,19 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     stats.samples = samples;
     stats.seconds = elapsed();
     schedule.update_floor(film);
-    stats.spp_min = ~uint64_t(0);
-    stats.spp_max = 0;
+    const Film::SampleCounts counts = film.sample_counts();
+    stats.spp_min = counts.min;
+    stats.spp_max = counts.max;
     double error_sq = 0;
-    uint64_t converged = 0, film_samples = 0;
+    uint64_t converged = 0;
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
-        const uint64_t n = film.sample_count(x, y);
-        stats.spp_min = std::min(stats.spp_min, n);
-        stats.spp_max = std::max(stats.spp_max, n);
-        film_samples += n;
         const double e = schedule.relative_error(film, x, y);
         error_sq += e * e;
         converged += settings.noise_target > 0 && e <= settings.noise_target;
       }
     const double pixels = double(width) * height;
-    stats.spp_mean = double(film_samples) / pixels;  // a resumed film's samples count too
+    stats.spp_mean = double(counts.total) / pixels;  // a resumed film's samples count too
     stats.relative_error = std::sqrt(error_sq / pixels);
     stats.converged_fraction = double(converged) / pixels;
   };

@@ -13,6 +13,7 @@
 
 #include "apps/command_errors.h"
 #include "apps/render_command.h"
+#include "apps/render_setup.h"
 #include "apps/stop_signals.h"
 #include "io/batch_file.h"
 #include "io/exr_reader.h"
@@ -55,8 +56,7 @@ const char* failure_class(int code) {
 
 int batch(const BatchOptions& o) {
   const std::vector<BatchJobText> jobs = parse_batch_file(o.file);
-  if (o.progress && !parse_progress_style(*o.progress))
-    throw UsageError("--progress: expected bar, plain or none, got '" + *o.progress + "'");
+  if (o.progress) progress_style_option(*o.progress);  // refuse a bad style before the first job
   std::atomic<bool> stop{false};
   const StopSignals signals(stop);
   std::vector<JobRow> rows(jobs.size());

@@ -15,7 +15,6 @@
 #include "core/renderer.h"
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
-#include "io/duration_text.h"
 #include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "io/film_state.h"
@@ -78,17 +77,9 @@ int render(const RenderOptions& o, const BatchContext& batch) {
   check_output_path(output);
   if (preview) check_output_path(*preview);
   std::optional<double> checkpoint = p.job ? p.job->checkpoint_seconds : std::nullopt;
-  if (o.checkpoint) {
-    checkpoint = parse_duration(*o.checkpoint);
-    if (!checkpoint || !(*checkpoint > 0))
-      throw UsageError("--checkpoint: expected a duration such as 60, 30s or 5m, got '" + *o.checkpoint + "'");
-  }
-  ProgressStyle progress_style = o.quiet ? ProgressStyle::None : ProgressStyle::Bar;
-  if (o.progress) {
-    const std::optional<ProgressStyle> style = parse_progress_style(*o.progress);
-    if (!style) throw UsageError("--progress: expected bar, plain or none, got '" + *o.progress + "'");
-    progress_style = *style;
-  }
+  if (o.checkpoint) checkpoint = duration_option("--checkpoint", *o.checkpoint);
+  const ProgressStyle progress_style =
+      o.progress ? progress_style_option(*o.progress) : o.quiet ? ProgressStyle::None : ProgressStyle::Bar;
   // A fixed-spp render with checkpoints runs in passes of about the checkpoint period (same bits).
   if (checkpoint) settings.pass_seconds = *checkpoint;
 

@@ -36,11 +36,7 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
     cli.width = w;
     cli.height = h;
   }
-  if (o.time) {
-    const std::optional<double> seconds = parse_duration(*o.time);
-    if (!seconds || !(*seconds > 0)) throw UsageError("--time: expected a duration such as 30s, 2m or 1h30m, got '" + *o.time + "'");
-    cli.time_budget = *seconds;
-  }
+  if (o.time) cli.time_budget = duration_option("--time", *o.time);
   if (o.aovs) {
     try {
       cli.aovs = parse_aovs(*o.aovs);
@@ -94,6 +90,19 @@ std::string si(double v) {
   if (v >= 1e6) return fmt::format("{:.1f}M", v / 1e6);
   if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
   return fmt::format("{:.0f}", v);
+}
+
+double duration_option(const std::string& option, const std::string& text) {
+  const std::optional<double> seconds = parse_duration(text);
+  if (!seconds || !(*seconds > 0))
+    throw UsageError(option + ": expected a duration such as 60, 30s, 2m or 1h30m, got '" + text + "'");
+  return *seconds;
+}
+
+ProgressStyle progress_style_option(const std::string& text) {
+  const std::optional<ProgressStyle> style = parse_progress_style(text);
+  if (!style) throw UsageError("--progress: expected bar, plain or none, got '" + text + "'");
+  return *style;
 }
 
 PreparedRender prepare_render(const RenderOptions& o) {

@@ -34,4 +34,9 @@ void build_scene(PreparedRender& render, bool quiet);
 // 12.3k, 4.5M, 1.20G: counts for summaries.
 std::string si(double v);
 
+// The positive duration given to `option` (60, "30s", "2m", "1h30m"); throws UsageError naming it.
+double duration_option(const std::string& option, const std::string& text);
+// The --progress style ("bar", "plain" or "none"); throws UsageError for anything else.
+ProgressStyle progress_style_option(const std::string& text);
+
 }  // namespace prism

@@ -8,7 +8,6 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <variant>
 #include <vector>
 
 #include "apps/command_errors.h"
@@ -18,6 +17,7 @@
 #include "io/batch_file.h"
 #include "io/exr_reader.h"
 #include "io/job_file.h"
+#include "io/render_identity.h"
 
 namespace prism {
 namespace {
@@ -27,10 +27,7 @@ bool complete_render_at(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return false;
   try {
-    const ExrImage header = read_exr_header(path);
-    const ExrAttribute* status = header.attribute("prism/status");
-    const std::string* text = status ? std::get_if<std::string>(&status->second) : nullptr;
-    return text && *text == "complete";
+    return attribute_text(read_exr_header(path), "prism/status") == "complete";
   } catch (const InputError&) {
     return false;  // unreadable: render it again
   }

@@ -20,22 +20,17 @@
 
 namespace prism {
 
-const std::vector<std::string>& supported_gltf_extensions() {
-  static const std::vector<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
-                                                      "KHR_materials_ior", "KHR_materials_volume",
-                                                      "KHR_lights_punctual", "KHR_texture_transform",
-                                                      "KHR_materials_specular"};
-  return kSupported;
+bool is_supported_gltf_extension(const std::string& name) {
+  static const std::set<std::string> kSupported = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
+                                                   "KHR_materials_ior", "KHR_materials_volume",
+                                                   "KHR_lights_punctual", "KHR_texture_transform",
+                                                   "KHR_materials_specular"};
+  return kSupported.count(name) > 0;
 }
 
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-bool is_supported(const std::string& extension) {
-  const auto& s = supported_gltf_extensions();
-  return std::find(s.begin(), s.end(), extension) != s.end();
-}
 
 std::string quoted_name(const std::string& kind, int index, const std::string& name) {
   return kind + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
@@ -90,7 +85,7 @@ class Converter {
   // Unsupported extensionsRequired were refused by check_gltf_schema.
   void check_extensions() {
     for (const auto& e : model_.extensionsUsed)
-      if (!is_supported(e)) diag_.warn("extension " + e + " is not supported yet and is ignored");
+      if (!is_supported_gltf_extension(e)) diag_.warn("extension " + e + " is not supported yet and is ignored");
   }
 
   void report_unrendered_features() {
@@ -557,13 +552,19 @@ class Converter {
     // do not decode are a broken texture, which renders magenta so it shows (unless --strict).
     const auto [data, size] = img.bufferView >= 0 ? buffer_view_bytes(model_, img.bufferView, file_, where)
                                                   : std::make_pair(img.image.data(), img.image.size());
-    try {
-      if (size == 0)
-        fail(where, img.uri.rfind("data:", 0) == 0 || img.uri.empty() ? "no image data"
-                                                                       : "the file '" + img.uri + "' is missing or empty");
-      out = decode_image(data, size, space, file_, where);
-    } catch (const InputError& e) {
-      diag_.substitute(file_, where, e.reason(), "its textures render magenta");
+    std::string problem;
+    if (size == 0) {
+      problem = img.uri.rfind("data:", 0) == 0 || img.uri.empty() ? "no image data"
+                                                                  : "the file '" + img.uri + "' is missing or empty";
+    } else {
+      try {
+        out = decode_image(data, size, space, file_, where);
+      } catch (const InputError& e) {
+        problem = e.reason();
+      }
+    }
+    if (!problem.empty()) {
+      diag_.substitute(file_, where, problem, "its textures render magenta");
       out = magenta_image();
     }
     out.name = img.name.empty() ? img.uri : img.name;
@@ -584,10 +585,6 @@ class Converter {
   std::vector<std::pair<int, CameraDesc>> cameras_by_node_;
   MemoryTally tally_;
 };
-
-bool is_glb(const std::vector<unsigned char>& bytes) {
-  return bytes.size() >= 4 && bytes[0] == 'g' && bytes[1] == 'l' && bytes[2] == 'T' && bytes[3] == 'F';
-}
 
 }  // namespace
 

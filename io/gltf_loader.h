@@ -19,7 +19,7 @@ SceneDesc load_gltf(const std::string& path, Diagnostics& diag);
 SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const std::string& base_dir,
                                 const std::string& name, Diagnostics& diag);
 
-// glTF extensions prism implements (anything else in extensionsRequired is an error).
-const std::vector<std::string>& supported_gltf_extensions();
+// Whether prism implements glTF extension `name` (anything else in extensionsRequired is an error).
+bool is_supported_gltf_extension(const std::string& name);
 
 }  // namespace prism

@@ -20,7 +20,7 @@ using nlohmann::json;
 // The JSON text of a .gltf, or of a .glb's first chunk (glTF 2.0 §4.4: a 12-byte header, then
 // chunks of length, type and data; the first chunk must be JSON).
 std::string json_text(const std::vector<unsigned char>& bytes, const std::string& file) {
-  if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return std::string(bytes.begin(), bytes.end());
+  if (!is_glb(bytes)) return std::string(bytes.begin(), bytes.end());
   auto u32 = [&](size_t at) {
     uint32_t v;
     std::memcpy(&v, bytes.data() + at, 4);
@@ -278,11 +278,9 @@ class Schema {
   void required_extensions() const {
     auto it = root_.find("extensionsRequired");
     if (it == root_.end()) return;
-    const auto& supported = supported_gltf_extensions();
     std::string unsupported;
     for (const auto& e : *it)
-      if (std::find(supported.begin(), supported.end(), e.get<std::string>()) == supported.end())
-        unsupported += (unsupported.empty() ? "" : ", ") + e.get<std::string>();
+      if (!is_supported_gltf_extension(e.get<std::string>())) unsupported += (unsupported.empty() ? "" : ", ") + e.get<std::string>();
     if (!unsupported.empty()) fail("$.extensionsRequired", "prism does not support " + unsupported);
   }
 
@@ -405,6 +403,10 @@ void Obj::check_ref(const json& v, const std::string& where, const char* array) 
 }
 
 }  // namespace
+
+bool is_glb(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
 
 void check_gltf_schema(const std::vector<unsigned char>& bytes, const std::string& file) {
   const json doc = parse_json(json_text(bytes, file), file);

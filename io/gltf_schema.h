@@ -14,4 +14,7 @@ namespace prism {
 // and the reason. Also refuses unsupported extensionsRequired and Draco-only geometry.
 void check_gltf_schema(const std::vector<unsigned char>& bytes, const std::string& file);
 
+// Whether `bytes` start as a binary glTF container (the GLB magic "glTF").
+bool is_glb(const std::vector<unsigned char>& bytes);
+
 }  // namespace prism

@@ -70,15 +70,7 @@ int batch(const BatchOptions& o) {
     const int code = run_reporting_errors(
         [&]() -> int {
           Diagnostics diag;
-          JobFile job;
-          try {
-            job = parse_job_json(jobs[i].json, o.file, diag);
-          } catch (const InputError& e) {
-            // "batch.json: $.spp: ..." -> "batch.json: $.jobs[4]: $.spp: ..." (the job over the defaults)
-            std::string reason = e.what();
-            if (reason.rfind(o.file + ": ", 0) == 0) reason.erase(0, o.file.size() + 2);
-            throw InputError(o.file, row.where, reason);
-          }
+          JobFile job = parse_listed_job(jobs[i], o.file, diag);
           if (!o.quiet)
             for (const std::string& w : diag.lines()) fmt::print(stderr, "prism: warning: {} (job {}): {}\n", o.file, row.where, w);
           row.scene = job.scene.value_or("");
@@ -90,9 +82,7 @@ int batch(const BatchOptions& o) {
             skipped = true;
             return kExitOk;
           }
-          RenderOptions render;
-          render.scene = job.scene ? *job.scene : o.file + "#" + row.where;
-          render.job = std::move(job);
+          RenderOptions render = job_render_options(std::move(job), o.file, row.where);
           render.quiet = o.quiet;
           render.strict = o.strict;
           render.progress = o.progress;

@@ -140,17 +140,11 @@ int converge(const ConvergeOptions& o) {
       plot.series.push_back(std::move(series));
     }
 
-  {
-    AtomicFile csv(csv_path);
-    std::ofstream f(csv.temp_path());
-    f << "setting,spp,seconds,rmse,relmse,efficiency\n";
-    for (const Row& r : rows)
-      f << fmt::format("{},{},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
+  std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
+  for (const Row& r : rows)
+    csv += fmt::format("{},{},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
                        r.error.all.rel_mse, 1.0 / (r.error.all.rel_mse * r.seconds));
-    if (!f.flush()) throw OutputError(csv_path, "cannot write");
-    f.close();
-    csv.commit();
-  }
+  write_file_atomically(csv_path, csv);
   write_loglog_svg(svg_path, plot);
   if (!ro.quiet) {
     fmt::print("fitted slopes of log relMSE against log time (Monte Carlo: -1):");

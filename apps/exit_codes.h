@@ -12,6 +12,8 @@ enum ExitCode : int {
   kExitThreshold = 5, // `prism compare --threshold`: the image misses it
   kExitStopped = 6,   // a render stopped by SIGINT or SIGTERM: its output holds what was rendered, resumable
   kExitMemory = 7,    // the work would need more memory than --memory-limit (estimated before allocating)
+  kExitFarmFailed = 8,   // prism farm: Slurm refused a submission, or a task or the merge failed
+  kExitFarmPending = 9,  // prism farm status: not finished yet (not submitted, pending or running)
 };
 
 }  // namespace prism

@@ -8,6 +8,7 @@
 #include "apps/compare_command.h"
 #include "apps/converge_command.h"
 #include "apps/exit_codes.h"
+#include "apps/farm_command.h"
 #include "apps/merge_command.h"
 #include "apps/render_command.h"
 #include "core/memory_limit.h"
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit status: 0 success, 1 internal error, 2 usage error, 3 bad input (scene, job file, image),\n"
       "4 output not writable, 5 compare: the image misses --threshold, 6 render stopped by SIGINT/SIGTERM (its\n"
-      "output holds the samples so far; continue it with --resume), 7 the work would exceed --memory-limit.\n"
+      "output holds the samples so far; continue it with --resume), 7 the work would exceed --memory-limit,\n"
+      "8 farm: Slurm refused a job, or a task or the merge failed, 9 farm status: not finished yet.\n"
       "Run 'prism COMMAND --help' for the options of a command.");
 
   std::string memory_limit;
@@ -137,6 +139,8 @@ int main(int argc, char** argv) {
   CLI::App* merge_cmd = add_merge_command(app, merge);
   BatchOptions batch;
   CLI::App* batch_cmd = add_batch_command(app, batch);
+  FarmOptions farm;
+  CLI::App* farm_cmd = add_farm_command(app, farm);
 
   try {
     app.parse(argc, argv);
@@ -151,5 +155,6 @@ int main(int argc, char** argv) {
   if (bench_cmd->parsed()) return run_bench(bench);
   if (merge_cmd->parsed()) return run_merge(merge);
   if (batch_cmd->parsed()) return run_batch(batch);
+  if (farm_cmd->parsed()) return run_farm(*farm_cmd, farm);
   return kExitUsage;
 }

@@ -13,6 +13,7 @@
 #include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "io/film_state.h"
+#include "io/png_writer.h"
 #include "io/render_identity.h"
 #include "io/render_layers.h"
 
@@ -37,6 +38,7 @@ uint64_t first_sample_of(const ExrImage& image, const std::string& path) {
 int merge(const MergeOptions& o) {
   if (o.parts.empty()) throw UsageError("merge: give the partial renders to merge");
   check_output_path(o.output);
+  if (o.preview) check_output_path(*o.preview);
   std::vector<Part> parts;
   for (const std::string& path : o.parts) parts.push_back({path, read_exr(path), 0});
   const ExrImage& first = parts.front().image;
@@ -98,7 +100,7 @@ int merge(const MergeOptions& o) {
   for (const ExrAttribute& a : first.attributes) {
     static const char* dropped[] = {"prism/firstSample", "prism/crop", "prism/spp", "prism/sppMin", "prism/sppMax",
                                     "prism/sppMean", "prism/relativeError", "prism/renderSeconds", "prism/passes",
-                                    "capDate", "prism/status"};
+                                    "capDate", "prism/status", "prism/farmTask"};
     if (std::find(std::begin(dropped), std::end(dropped), a.first) == std::end(dropped) && a.first.rfind("prism.state", 0) != 0)
       out.attributes.push_back(a);
   }
@@ -115,11 +117,16 @@ int merge(const MergeOptions& o) {
   std::string sources;
   for (const Part& p : parts) sources += (sources.empty() ? "" : " ") + p.path;
   out.attributes.push_back({"prism/mergedFrom", fmt::format("{} parts: {}", parts.size(), sources)});
+  for (const auto& [name, value] : o.extra_attributes) {
+    std::erase_if(out.attributes, [&](const ExrAttribute& a) { return a.first == name; });
+    out.attributes.push_back({name, value});
+  }
   const ExrChannel* r = first.find("R");
   LayerOptions layers;
   layers.beauty = r && r->type == ExrPixelType::Float ? ExrPixelType::Float : ExrPixelType::Half;
   add_render_layers(merged, nullptr, layers, out);
   write_exr(o.output, out);
+  if (o.preview) write_png_preview(*o.preview, merged.width(), merged.height(), merged.resolve_rgba());
   if (!o.quiet)
     fmt::print("merged {} parts ({} windows) -> {}: {}x{} at ({}, {}), {}-{} spp\n", parts.size(), windows.size(), o.output,
                bounds.width(), bounds.height(), bounds.x0, bounds.y0, lo, hi);
@@ -134,6 +141,7 @@ CLI::App* add_merge_command(CLI::App& app, MergeOptions& o) {
                "crops (--crop) are stitched");
   cmd->add_option("PARTS", o.parts, "The partial renders (EXR files written by prism render)")->required();
   cmd->add_option("-o,--output", o.output, "The merged EXR")->required();
+  cmd->add_option("--preview", o.preview, "Also write an 8-bit sRGB PNG preview of the merged image to this path");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
 }

@@ -48,6 +48,7 @@ std::vector<ExrAttribute> header_attributes(const RenderOptions& o, const Prepar
   const SceneDesc& desc = p.scene->desc();
   if (desc.environment.present)
     a.push_back({"prism/environment", desc.environment.source.empty() ? std::string("constant") : desc.environment.source});
+  for (const auto& [name, value] : o.extra_attributes) a.push_back({name, value});
   return a;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/progress_bar.h"
@@ -35,6 +36,8 @@ struct RenderOptions {
   std::optional<float> env_intensity, env_rotation;
   bool quiet = false;
   bool strict = false;  // missing or undecodable textures are errors, not magenta
+  // Written into the header as they are (prism farm: the plan and the task a part belongs to).
+  std::vector<std::pair<std::string, std::string>> extra_attributes;
 };
 
 // How a render runs inside a batch: the batch's stop flag (set by its signal handler) and where

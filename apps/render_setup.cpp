@@ -105,6 +105,13 @@ ProgressStyle progress_style_option(const std::string& text) {
   return *style;
 }
 
+RenderOptions job_render_options(JobFile job, const std::string& list_file, const std::string& where) {
+  RenderOptions render;
+  render.scene = job.scene ? *job.scene : list_file + "#" + where;
+  render.job = std::move(job);
+  return render;
+}
+
 PreparedRender prepare_render(const RenderOptions& o) {
   Diagnostics diag;
   diag.strict = o.strict;

@@ -28,6 +28,10 @@ struct PreparedRender {
 // quiet. Throws UsageError for bad options and InputError for bad files.
 PreparedRender prepare_render(const RenderOptions& options);
 
+// Options that render a job of a job list (a batch's, or a job file's own): the job parsed already,
+// named by its scene, else by its place in the list ("batch.json#$.jobs[2]").
+RenderOptions job_render_options(JobFile job, const std::string& list_file, const std::string& where);
+
 // Builds the Embree scene (and warns, unless quiet, when nothing emits light).
 void build_scene(PreparedRender& render, bool quiet);
 

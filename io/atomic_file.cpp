@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <fstream>
 #include <filesystem>
 #include <system_error>
 
@@ -45,6 +46,16 @@ AtomicFile::~AtomicFile() {
     std::error_code ec;
     fs::remove(temp_, ec);
   }
+}
+
+void write_file_atomically(const std::string& target, const std::string& contents) {
+  AtomicFile out(target);
+  {
+    std::ofstream f(out.temp_path(), std::ios::binary);
+    f << contents;
+    if (!f.flush()) throw OutputError(target, "cannot write");
+  }
+  out.commit();
 }
 
 void AtomicFile::commit() {

@@ -9,6 +9,9 @@ namespace prism {
 // directory in its place, a directory that is not writable): lets a long render fail early.
 void check_output_path(const std::string& target);
 
+// Writes `contents` to `target` through an AtomicFile; throws OutputError naming it on failure.
+void write_file_atomically(const std::string& target, const std::string& contents);
+
 class AtomicFile {
  public:
   // Checks that the target's directory exists and that the target is not a directory; throws

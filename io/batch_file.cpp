@@ -10,12 +10,30 @@
 
 namespace prism {
 
-std::vector<BatchJobText> parse_batch_file(const std::string& path) {
+namespace {
+
+std::string file_text(const std::string& path, const char* what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the batch file");
+  if (!in) throw InputError(path, "", std::string("cannot open the ") + what);
   std::stringstream text;
   text << in.rdbuf();
-  return parse_batch_json(text.str(), path);
+  return text.str();
+}
+
+}  // namespace
+
+std::vector<BatchJobText> parse_batch_file(const std::string& path) {
+  return parse_batch_json(file_text(path, "batch file"), path);
+}
+
+std::vector<BatchJobText> read_job_list(const std::string& path, bool* is_batch) {
+  const std::string text = file_text(path, "job or batch file");
+  const nlohmann::json root = parse_json(text, path);
+  const bool batch = root.is_array() || (root.is_object() && root.contains("jobs"));
+  if (is_batch) *is_batch = batch;
+  if (batch) return parse_batch_json(text, path);
+  if (!root.is_object()) throw InputError(path, "$", "expected a job (an object of job keys) or a batch");
+  return {BatchJobText{"$", text}};
 }
 
 std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::string& path) {
@@ -43,6 +61,18 @@ std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::s
     out.push_back({where, job.dump()});
   }
   return out;
+}
+
+JobFile parse_listed_job(const BatchJobText& job, const std::string& file, Diagnostics& diag) {
+  try {
+    return parse_job_json(job.json, file, diag);
+  } catch (const InputError& e) {
+    if (job.where == "$") throw;
+    // "batch.json: $.spp: ..." -> "batch.json: $.jobs[4]: $.spp: ..." (the job over the defaults)
+    std::string reason = e.what();
+    if (reason.rfind(file + ": ", 0) == 0) reason.erase(0, file.size() + 2);
+    throw InputError(file, job.where, reason);
+  }
 }
 
 }  // namespace prism

@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "io/diagnostics.h"
+#include "io/job_file.h"
+
 namespace prism {
 
 struct BatchJobText {
@@ -19,5 +22,13 @@ struct BatchJobText {
 std::vector<BatchJobText> parse_batch_file(const std::string& path);
 // The same from the file's text; `path` names it in messages.
 std::vector<BatchJobText> parse_batch_json(const std::string& text, const std::string& path);
+
+// A batch file's jobs, or a job file as a list of one job ("$"): a list or an object with "jobs"
+// is a batch. `is_batch` (when given) says which it was. Throws InputError naming the file.
+std::vector<BatchJobText> read_job_list(const std::string& path, bool* is_batch = nullptr);
+
+// Parses one job of the list read from `file`; an error names the job's place in a batch
+// ("batch.json: $.jobs[4]: $.spp: ...").
+JobFile parse_listed_job(const BatchJobText& job, const std::string& file, Diagnostics& diag);
 
 }  // namespace prism

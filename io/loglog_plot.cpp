@@ -106,13 +106,7 @@ void write_loglog_svg(const std::string& path, const LogLogPlot& plot) {
   }
   svg += "</svg>\n";
 
-  AtomicFile out(path);
-  {
-    std::ofstream f(out.temp_path(), std::ios::binary);
-    f << svg;
-    if (!f.flush()) throw OutputError(path, "cannot write the plot");
-  }
-  out.commit();
+  write_file_atomically(path, svg);
 }
 
 }  // namespace prism

@@ -34,6 +34,21 @@ std::optional<uint64_t> environment_number(const char* name) {
 
 }  // namespace
 
+std::vector<std::string> job_texts(const std::vector<BatchJobText>& jobs) {
+  std::vector<std::string> texts;
+  for (const BatchJobText& j : jobs) texts.push_back(j.json);
+  return texts;
+}
+
+std::vector<BatchJobText> read_planned_jobs(const FarmPlan& plan) {
+  std::vector<BatchJobText> jobs = read_job_list(plan.source);
+  if (farm_source_digest(job_texts(jobs)) != plan.source_digest)
+    throw InputError(plan.source, "", fmt::format("changed since it was planned into {}: plan it again (prism farm plan "
+                                                  "... --replace), or its parts would mix two versions",
+                                                  plan.directory));
+  return jobs;
+}
+
 const char* farm_file_state_name(FarmFileState state) {
   switch (state) {
     case FarmFileState::Missing: return "missing";
@@ -69,16 +84,15 @@ int run_farm_task(const FarmPlan& plan, int index, bool quiet) {
   return run_reporting_errors([&] {
     if (index < 0 || size_t(index) >= plan.tasks.size())
       throw UsageError(fmt::format("farm task {}: the plan in {} has tasks 0 to {}", index, plan.directory, plan.tasks.size() - 1));
-    const std::vector<BatchJobText> jobs = read_job_list(plan.source);
-    // Under Slurm: the CPUs and memory the job was given, unless the command line said otherwise.
-    const std::optional<uint64_t> cpus = environment_number("SLURM_CPUS_PER_TASK");
+    const std::vector<BatchJobText> jobs = read_planned_jobs(plan);
+    // Under Slurm: the CPUs and the memory the job was given.
+    std::optional<uint64_t> cpus = environment_number("SLURM_CPUS_PER_TASK");
+    if (!cpus) cpus = environment_number("SLURM_CPUS_ON_NODE");
     if (const std::optional<uint64_t> mb = environment_number("SLURM_MEM_PER_NODE"))
       set_memory_limit(std::min(memory_limit(), *mb << 20));
 
     int result = kExitOk;
     for (const FarmSlice& slice : plan.tasks[size_t(index)].slices) {
-      if (slice.job >= jobs.size())
-        throw InputError(plan.source, "jobs", fmt::format("has {} jobs now, fewer than when it was planned: plan again", jobs.size()));
       const FarmFileState state = farm_file_state(plan, slice.output);
       if (state == FarmFileState::Complete) {
         if (!quiet) fmt::print("task {}: {} is complete already\n", index, slice.output);
@@ -121,6 +135,7 @@ int run_farm_task(const FarmPlan& plan, int index, bool quiet) {
 
 int run_farm_merge(const FarmPlan& plan, bool quiet) {
   return run_reporting_errors([&] {
+    read_planned_jobs(plan);  // parts of an edited job must not be merged as if planned from it
     std::vector<std::string> missing;
     int result = kExitOk;
     const char* slurm_job = std::getenv("SLURM_JOB_ID");

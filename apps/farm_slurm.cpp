@@ -35,6 +35,14 @@ const SlurmJob* find_job(const std::vector<SlurmJob>& jobs, const std::string& i
 }
 
 // The line of a task's log that says why it failed: prism's last error, else the last line.
+// Slurm's view of a submission's array and merge jobs.
+SlurmQuery query_submission(const FarmSubmission& s) {
+  std::vector<std::string> ids;
+  for (const std::string& id : {s.array_job, s.merge_job})
+    if (!id.empty()) ids.push_back(id);
+  return query_slurm_jobs(ids);
+}
+
 std::string failure_line(const std::string& log) {
   std::ifstream in(log);
   std::string line, last, error;
@@ -89,28 +97,27 @@ int submit(const FarmPlan& plan, bool quiet) {
   const std::vector<FarmSubmission> earlier = read_farm_submissions(plan);
   if (!earlier.empty()) {
     const FarmSubmission& last = earlier.back();
-    std::vector<std::string> ids;
-    for (const std::string& id : {last.array_job, last.merge_job})
-      if (!id.empty()) ids.push_back(id);
-    if (const auto jobs = query_slurm_jobs(ids)) {
-      bool task_failed = false;
-      for (const SlurmJob& j : *jobs) {
-        if (!j.array_task) continue;
-        if (slurm_running(j.state))
-          throw UsageError(fmt::format("farm submit: task {} of array job {} (the last submission) is {}: wait for it, "
-                                       "or scancel {} {}",
-                                       *j.array_task, j.job_id, j.state, last.array_job, last.merge_job));
-        task_failed = task_failed || j.state != "COMPLETED";
-      }
-      // A merge still waiting on a failed task can never run (Slurm cancels it soon, or never
-      // without --kill-on-invalid-dep): cancel it now. One that can still run is left alone.
-      if (const SlurmJob* m = find_job(*jobs, last.merge_job, std::nullopt); m && slurm_running(m->state)) {
-        if (!task_failed && m->reason != "DependencyNeverSatisfied")
-          throw UsageError(fmt::format("farm submit: merge job {} of the last submission is {}: wait for it, or scancel {}",
-                                       m->job_id, m->state, m->job_id));
-        run_command({"scancel", m->job_id});
-        if (!quiet) fmt::print("cancelled merge job {}, which waited on a failed task\n", m->job_id);
-      }
+    const SlurmQuery query = query_submission(last);
+    if (!query.answered())
+      throw UsageError(fmt::format("farm submit: cannot tell whether the last submission (jobs {} {}) still runs: {}",
+                                   last.array_job, last.merge_job, query.error));
+    bool task_failed = false;
+    for (const SlurmJob& j : query.jobs) {
+      if (!j.array_task) continue;
+      if (slurm_running(j.state))
+        throw UsageError(fmt::format("farm submit: task {} of array job {} (the last submission) is {}: wait for it, "
+                                     "or scancel {} {}",
+                                     *j.array_task, j.job_id, j.state, last.array_job, last.merge_job));
+      task_failed = task_failed || j.state != "COMPLETED";
+    }
+    // A merge still waiting on a failed task can never run (Slurm cancels it soon, or never
+    // without --kill-on-invalid-dep): cancel it now. One that can still run is left alone.
+    if (const SlurmJob* m = find_job(query.jobs, last.merge_job, std::nullopt); m && slurm_running(m->state)) {
+      if (!task_failed && m->reason != "DependencyNeverSatisfied")
+        throw UsageError(fmt::format("farm submit: merge job {} of the last submission is {}: wait for it, or scancel {}",
+                                     m->job_id, m->state, m->job_id));
+      run_command({"scancel", m->job_id});
+      if (!quiet) fmt::print("cancelled merge job {}, which waited on a failed task\n", m->job_id);
     }
   }
 
@@ -156,12 +163,12 @@ int submit(const FarmPlan& plan, bool quiet) {
 int status(const FarmPlan& plan) {
   const std::vector<FarmSubmission> submissions = read_farm_submissions(plan);
   const FarmSubmission* last = submissions.empty() ? nullptr : &submissions.back();
-  std::optional<std::vector<SlurmJob>> jobs;
+  std::optional<std::vector<SlurmJob>> jobs;  // Slurm's view, when it answers
+  std::string slurm_error;
   if (last) {
-    std::vector<std::string> ids;
-    for (const std::string& id : {last->array_job, last->merge_job})
-      if (!id.empty()) ids.push_back(id);
-    jobs = query_slurm_jobs(ids);
+    SlurmQuery query = query_submission(*last);
+    if (query.answered()) jobs = std::move(query.jobs);
+    else slurm_error = query.error;
   }
 
   fmt::print("plan {}: {} by {}, {} task{}", plan.directory, plan.source, farm_split_name(plan.by), plan.tasks.size(),
@@ -170,7 +177,7 @@ int status(const FarmPlan& plan) {
   else
     fmt::print("; submission {}: {}merge job {}{}\n", submissions.size(),
                last->array_job.empty() ? "" : fmt::format("array job {} (tasks {}), ", last->array_job, array_spec(last->tasks)),
-               last->merge_job, jobs ? "" : " (scontrol is not on PATH: Slurm's view is missing)");
+               last->merge_job, jobs ? "" : fmt::format(" (Slurm's view is missing: {})", slurm_error));
 
   size_t failed = 0, done = 0;
   fmt::print("{:>5}  {:<22} {:<13} {}\n", "task", "slurm", "files", "slice");

@@ -117,9 +117,9 @@ int merge(const MergeOptions& o) {
   std::string sources;
   for (const Part& p : parts) sources += (sources.empty() ? "" : " ") + p.path;
   out.attributes.push_back({"prism/mergedFrom", fmt::format("{} parts: {}", parts.size(), sources)});
-  for (const auto& [name, value] : o.extra_attributes) {
-    std::erase_if(out.attributes, [&](const ExrAttribute& a) { return a.first == name; });
-    out.attributes.push_back({name, value});
+  for (const auto& extra : o.extra_attributes) {
+    std::erase_if(out.attributes, [&](const ExrAttribute& a) { return a.first == extra.first; });
+    out.attributes.push_back({extra.first, extra.second});
   }
   const ExrChannel* r = first.find("R");
   LayerOptions layers;

@@ -27,6 +27,7 @@ json plan_body(const FarmPlan& p) {
   json j;
   j["version"] = kPlanVersion;
   j["source"] = p.source;
+  j["source_digest"] = p.source_digest;
   j["batch"] = p.batch;
   j["by"] = farm_split_name(p.by);
   j["prism"] = p.prism;
@@ -131,6 +132,12 @@ std::optional<FarmSplit> parse_farm_split(const std::string& text) {
   return std::nullopt;
 }
 
+std::string farm_source_digest(const std::vector<std::string>& job_texts) {
+  std::string all;
+  for (const std::string& t : job_texts) all += std::to_string(t.size()) + ":" + t;
+  return fmt::format("{:016x}", fnv1a(all));
+}
+
 std::string FarmPlan::id() const { return fmt::format("{:016x}", fnv1a(plan_body(*this).dump())); }
 std::string FarmPlan::plan_file() const { return (fs::path(directory) / "plan.json").string(); }
 std::string FarmPlan::task_script() const { return (fs::path(directory) / "task.sbatch").string(); }
@@ -161,6 +168,7 @@ FarmPlan read_farm_plan(const std::string& directory) {
   if (r.number(j, "version", "$") != kPlanVersion)
     r.fail("$.version", fmt::format("this prism reads plans of version {}", kPlanVersion));
   p.source = r.text(j, "source", "$");
+  p.source_digest = r.text(j, "source_digest", "$");
   const json& batch = r.at(j, "batch", "$");
   if (!batch.is_boolean()) r.fail("$.batch", "expected true or false");
   p.batch = batch.get<bool>();
@@ -217,8 +225,11 @@ FarmPlan read_farm_plan(const std::string& directory) {
     }
     p.tasks.push_back(std::move(task));
   }
-  if (j.contains("id") && j["id"] != p.id())
-    r.fail("$.id", "does not match the plan's contents: plan.json was edited by hand");
+  for (size_t t = 0; t < p.tasks.size(); ++t)
+    for (size_t k = 0; k < p.tasks[t].slices.size(); ++k)
+      if (p.tasks[t].slices[k].job >= p.outputs.size())
+        r.fail(fmt::format("$.tasks[{}].slices[{}].job", t, k), "is not a job of the plan's outputs");
+  if (r.text(j, "id", "$") != p.id()) r.fail("$.id", "does not match the plan's contents: plan.json was edited by hand");
   return p;
 }
 

@@ -50,6 +50,7 @@ struct SlurmRequest {
 struct FarmPlan {
   std::string directory;  // absolute: holds plan.json, the scripts, parts/ and logs/
   std::string source;     // absolute path of the job or batch file
+  std::string source_digest;  // of the source's jobs as planned: tasks refuse a source edited since
   bool batch = false;
   FarmSplit by = FarmSplit::Samples;
   std::string prism;      // absolute path of the prism binary the tasks run
@@ -70,6 +71,9 @@ struct FarmPlan {
   // The Slurm log of array task `task` of array job `array_job` (the task script's --output).
   std::string task_log(const std::string& array_job, int task) const;
 };
+
+// A digest of the jobs a job or batch file holds (each job's text over the batch defaults).
+std::string farm_source_digest(const std::vector<std::string>& job_texts);
 
 // plan.json's text (with the id, for readers; read_farm_plan recomputes it).
 std::string farm_plan_json(const FarmPlan& plan);

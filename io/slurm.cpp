@@ -117,15 +117,23 @@ std::vector<SlurmJob> parse_scontrol_jobs(const std::string& text) {
   return jobs;
 }
 
-std::optional<std::vector<SlurmJob>> query_slurm_jobs(const std::vector<std::string>& job_ids) {
-  std::vector<SlurmJob> all;
+SlurmQuery query_slurm_jobs(const std::vector<std::string>& job_ids) {
+  SlurmQuery q;
   for (const std::string& id : job_ids) {
     const std::optional<CommandResult> r = run_command({"scontrol", "show", "job", "-o", id});
-    if (!r) return std::nullopt;
-    if (r->exit_code != 0) continue;  // "Invalid job id specified": purged after MinJobAge
-    for (SlurmJob& j : parse_scontrol_jobs(r->out)) all.push_back(std::move(j));
+    if (!r) {
+      q.error = "scontrol is not on PATH";
+      return q;
+    }
+    if (r->exit_code != 0) {
+      if (r->err.find("Invalid job id") != std::string::npos) continue;  // forgotten after MinJobAge
+      q.error = r->err.empty() ? fmt::format("scontrol exited {}", r->exit_code) : r->err;
+      while (!q.error.empty() && (q.error.back() == '\n' || q.error.back() == '\r')) q.error.pop_back();
+      return q;
+    }
+    for (SlurmJob& j : parse_scontrol_jobs(r->out)) q.jobs.push_back(std::move(j));
   }
-  return all;
+  return q;
 }
 
 }  // namespace prism

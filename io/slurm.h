@@ -40,8 +40,13 @@ struct SlurmJob {
 // Parses `scontrol show job -o` output: one record per line of Key=Value words.
 std::vector<SlurmJob> parse_scontrol_jobs(const std::string& text);
 
-// Asks scontrol for the given job ids (an array job gives its tasks). Returns nullopt when
-// scontrol is not installed; jobs Slurm no longer knows are simply absent.
-std::optional<std::vector<SlurmJob>> query_slurm_jobs(const std::vector<std::string>& job_ids);
+// What scontrol said about some jobs: the jobs it knows (an array job gives its tasks; jobs Slurm
+// has forgotten, after MinJobAge, are absent), or why it could not say.
+struct SlurmQuery {
+  std::vector<SlurmJob> jobs;
+  std::string error;  // "scontrol is not on PATH", or scontrol's message (the controller is down)
+  bool answered() const { return error.empty(); }
+};
+SlurmQuery query_slurm_jobs(const std::vector<std::string>& job_ids);
 
 }  // namespace prism

@@ -94,6 +94,12 @@ sed -i 's/"by": "frames"/"by": "tiles"/' frames.farm/plan.json
 expect 3 "plan.json: \\$\\.id: does not match" "$prism" farm status frames.farm
 expect 3 "plan.json: missing" "$prism" farm status "$work"
 
+echo "-- a job edited after planning is refused, not mixed"
+sed -i 's/"spp": 16/"spp": 17/' box.json
+expect 3 "box.json: changed since it was planned" "$prism" farm task box.farm 0
+expect 3 "box.json: changed since it was planned" "$prism" farm merge box.farm
+sed -i 's/"spp": 17/"spp": 16/' box.json
+
 echo "-- no Slurm here"
 expect 2 "sbatch is not on PATH.*sbatch --array=0-3 .*task.sbatch" env PATH=/nonexistent "$prism" farm submit box.farm
 echo "all local farm cases passed"

@@ -199,7 +199,7 @@ TEST_F(FarmPlanFile, RefusesAnEditedOrDamagedPlanNamingTheElement) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("$.id"), std::string::npos) << e.what();
   }
-  write(R"({"version": 1, "source": "/j.json", "batch": false, "by": "slices"})");
+  write(R"({"version": 1, "source": "/j.json", "source_digest": "0", "batch": false, "by": "slices"})");
   try {
     read_farm_plan(dir_.string());
     FAIL();

@@ -1,12 +1,11 @@
 #include "io/png_writer.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "io/atomic_file.h"
 #include "io/errors.h"
+#include "io/image_codecs.h"
 
 namespace prism {
 
@@ -23,14 +22,11 @@ void write_png_preview(const std::string& path, int width, int height, const std
     for (int c = 0; c < 3; ++c)
       rgb[i * 3 + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(rgba[i * 4 + c]) * 255.0f));
 
+  const ImageCodecs& codecs = image_codecs();
   AtomicFile out(path);
-  // The writer is chosen by format name: the temporary file's name has no .png ending.
-  auto writer = OIIO::ImageOutput::create("png");
-  if (!writer) throw OutputError(path, "no PNG writer: " + OIIO::geterror());
-  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  if (!writer->open(out.temp_path(), spec) || !writer->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-      !writer->close())
-    throw OutputError(path, "cannot write PNG: " + writer->geterror());
+  std::string error;
+  if (!codecs.write_png(out.temp_path(), width, height, rgb.data(), error))
+    throw OutputError(path, "cannot write PNG: " + error);
   out.commit();
 }
 

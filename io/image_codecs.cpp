@@ -1,0 +1,59 @@
+#include "io/image_codecs.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace prism {
+namespace {
+
+constexpr const char* kModuleName = "libprism_image_codecs.so";
+
+// Beside the running binary first (build/bin, or wherever prism was copied with it), then where
+// this build put it (test binaries live in other folders).
+std::vector<std::string> module_candidates() {
+  std::vector<std::string> paths;
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) paths.push_back((self.parent_path() / kModuleName).string());
+#ifdef PRISM_IMAGE_CODECS_MODULE
+  if (paths.empty() || paths.front() != PRISM_IMAGE_CODECS_MODULE) paths.push_back(PRISM_IMAGE_CODECS_MODULE);
+#endif
+  return paths;
+}
+
+const ImageCodecs* open_module(std::string& error) {
+  for (const std::string& path : module_candidates()) {
+    if (!std::filesystem::exists(path)) {
+      error += (error.empty() ? "" : "; ") + path + ": not found";
+      continue;
+    }
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed: it lives as long as prism
+    if (!handle) {
+      const char* why = dlerror();
+      error += (error.empty() ? "" : "; ") + std::string(why ? why : path + ": cannot be opened");
+      continue;
+    }
+    using Entry = const ImageCodecs* (*)();
+    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "prism_image_codecs_v1"));
+    if (entry) return entry();
+    error += (error.empty() ? "" : "; ") + path + ": has no prism_image_codecs_v1";
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+const ImageCodecs& image_codecs() {
+  static std::string error;
+  static const ImageCodecs* const codecs = open_module(error);
+  if (!codecs)
+    throw std::runtime_error("cannot open prism's image codecs (OpenImageIO), which reading images and writing PNG "
+                             "need: " + error);
+  return *codecs;
+}
+
+}  // namespace prism

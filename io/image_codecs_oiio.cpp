@@ -9,10 +9,9 @@ namespace {
 
 class OiioInput final : public ImageCodecs::Input {
  public:
-  // `memory` (may be null) backs `in` and must outlive it.
+  // `memory` (may be null) backs `in`: declared first, it is destroyed after it.
   OiioInput(std::unique_ptr<OIIO::Filesystem::IOMemReader> memory, std::unique_ptr<OIIO::ImageInput> in)
       : memory_(std::move(memory)), in_(std::move(in)) {}
-  ~OiioInput() override { in_.reset(); }
 
   ImageCodecs::Info info() const override {
     const OIIO::ImageSpec& spec = in_->spec();

@@ -6,7 +6,6 @@
 #include <set>
 
 #include "apps/command_errors.h"
-#include "apps/farm_runner.h"
 #include "apps/render_setup.h"
 #include "io/atomic_file.h"
 #include "io/batch_file.h"
@@ -58,7 +57,7 @@ FarmPlan make_farm_plan(const FarmPlanOptions& o) {
   FarmPlan plan;
   plan.source = absolute_path(o.job);
   const std::vector<BatchJobText> jobs = read_job_list(plan.source, &plan.batch);
-  plan.source_digest = farm_source_digest(job_texts(jobs));
+  plan.source_digest = farm_source_digest(jobs);
   plan.by = *by;
   const std::string stem = fs::path(o.job).stem().string();
   plan.directory = absolute_path(o.plan ? *o.plan : stem + ".farm");

@@ -34,15 +34,9 @@ std::optional<uint64_t> environment_number(const char* name) {
 
 }  // namespace
 
-std::vector<std::string> job_texts(const std::vector<BatchJobText>& jobs) {
-  std::vector<std::string> texts;
-  for (const BatchJobText& j : jobs) texts.push_back(j.json);
-  return texts;
-}
-
 std::vector<BatchJobText> read_planned_jobs(const FarmPlan& plan) {
   std::vector<BatchJobText> jobs = read_job_list(plan.source);
-  if (farm_source_digest(job_texts(jobs)) != plan.source_digest)
+  if (farm_source_digest(jobs) != plan.source_digest)
     throw InputError(plan.source, "", fmt::format("changed since it was planned into {}: plan it again (prism farm plan "
                                                   "... --replace), or its parts would mix two versions",
                                                   plan.directory));

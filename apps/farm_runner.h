@@ -6,13 +6,9 @@
 #include <vector>
 
 #include "io/batch_file.h"
-
 #include "io/farm_plan.h"
 
 namespace prism {
-
-// The texts of the jobs of a list, in order (what farm_source_digest digests).
-std::vector<std::string> job_texts(const std::vector<BatchJobText>& jobs);
 
 // The plan's source, read again; throws InputError when it no longer holds the jobs planned.
 std::vector<BatchJobText> read_planned_jobs(const FarmPlan& plan);

@@ -34,7 +34,6 @@ const SlurmJob* find_job(const std::vector<SlurmJob>& jobs, const std::string& i
   return nullptr;
 }
 
-// The line of a task's log that says why it failed: prism's last error, else the last line.
 // Slurm's view of a submission's array and merge jobs.
 SlurmQuery query_submission(const FarmSubmission& s) {
   std::vector<std::string> ids;
@@ -43,6 +42,7 @@ SlurmQuery query_submission(const FarmSubmission& s) {
   return query_slurm_jobs(ids);
 }
 
+// The line of a task's log that says why it failed: prism's last error, else the last line.
 std::string failure_line(const std::string& log) {
   std::ifstream in(log);
   std::string line, last, error;
@@ -79,11 +79,8 @@ std::string submit_job(const std::vector<std::string>& argv) {
   for (const std::string& a : argv) command += (command.empty() ? "" : " ") + a;
   if (!r) throw UsageError(fmt::format("farm submit: cannot run '{}'", command));
   const std::optional<std::string> id = parse_sbatch_job_id(r->out);
-  if (r->exit_code != 0 || !id) {
-    std::string err = r->err.empty() ? r->out : r->err;
-    while (!err.empty() && err.back() == '\n') err.pop_back();
-    throw SlurmRefused(fmt::format("'{}' failed (exit {}): {}", command, r->exit_code, err));
-  }
+  if (r->exit_code != 0 || !id)
+    throw SlurmRefused(fmt::format("'{}' failed (exit {}): {}", command, r->exit_code, r->message()));
   return *id;
 }
 
@@ -163,13 +160,7 @@ int submit(const FarmPlan& plan, bool quiet) {
 int status(const FarmPlan& plan) {
   const std::vector<FarmSubmission> submissions = read_farm_submissions(plan);
   const FarmSubmission* last = submissions.empty() ? nullptr : &submissions.back();
-  std::optional<std::vector<SlurmJob>> jobs;  // Slurm's view, when it answers
-  std::string slurm_error;
-  if (last) {
-    SlurmQuery query = query_submission(*last);
-    if (query.answered()) jobs = std::move(query.jobs);
-    else slurm_error = query.error;
-  }
+  const SlurmQuery view = last ? query_submission(*last) : SlurmQuery{};  // Slurm's view of it
 
   fmt::print("plan {}: {} by {}, {} task{}", plan.directory, plan.source, farm_split_name(plan.by), plan.tasks.size(),
              plan.tasks.size() == 1 ? "" : "s");
@@ -177,7 +168,7 @@ int status(const FarmPlan& plan) {
   else
     fmt::print("; submission {}: {}merge job {}{}\n", submissions.size(),
                last->array_job.empty() ? "" : fmt::format("array job {} (tasks {}), ", last->array_job, array_spec(last->tasks)),
-               last->merge_job, jobs ? "" : fmt::format(" (Slurm's view is missing: {})", slurm_error));
+               last->merge_job, view.answered() ? "" : fmt::format(" (Slurm's view is missing: {})", view.error));
 
   size_t failed = 0, done = 0;
   fmt::print("{:>5}  {:<22} {:<13} {}\n", "task", "slurm", "files", "slice");
@@ -186,8 +177,8 @@ int status(const FarmPlan& plan) {
     const bool submitted = last && !last->array_job.empty() && std::count(last->tasks.begin(), last->tasks.end(), int(t));
     std::string slurm = last && files == FarmFileState::Complete ? "(done before)" : "-";
     bool task_failed = false;
-    if (submitted && jobs) {
-      const SlurmJob* j = find_job(*jobs, last->array_job, int(t));
+    if (submitted && view.answered()) {
+      const SlurmJob* j = find_job(view.jobs, last->array_job, int(t));
       if (!j) {
         slurm = "unknown to Slurm";
         task_failed = files != FarmFileState::Complete;
@@ -207,8 +198,8 @@ int status(const FarmPlan& plan) {
   }
 
   bool merge_failed = false;
-  if (last && jobs) {
-    const SlurmJob* m = find_job(*jobs, last->merge_job, std::nullopt);
+  if (last && view.answered()) {
+    const SlurmJob* m = find_job(view.jobs, last->merge_job, std::nullopt);
     const std::string state = m ? m->state + (m->reason != "None" && !m->reason.empty() ? " (" + m->reason + ")" : "")
                                 : std::string("unknown to Slurm");
     merge_failed = !m || !slurm_running(m->state);

@@ -132,9 +132,9 @@ std::optional<FarmSplit> parse_farm_split(const std::string& text) {
   return std::nullopt;
 }
 
-std::string farm_source_digest(const std::vector<std::string>& job_texts) {
+std::string farm_source_digest(const std::vector<BatchJobText>& jobs) {
   std::string all;
-  for (const std::string& t : job_texts) all += std::to_string(t.size()) + ":" + t;
+  for (const BatchJobText& j : jobs) all += std::to_string(j.json.size()) + ":" + j.json;
   return fmt::format("{:016x}", fnv1a(all));
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/pixel_window.h"
 #include "core/work_split.h"
+#include "io/batch_file.h"
 
 namespace prism {
 
@@ -73,7 +74,7 @@ struct FarmPlan {
 };
 
 // A digest of the jobs a job or batch file holds (each job's text over the batch defaults).
-std::string farm_source_digest(const std::vector<std::string>& job_texts);
+std::string farm_source_digest(const std::vector<BatchJobText>& jobs);
 
 // plan.json's text (with the id, for readers; read_farm_plan recomputes it).
 std::string farm_plan_json(const FarmPlan& plan);

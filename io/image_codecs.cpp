@@ -1,7 +1,6 @@
 #include "io/image_codecs.h"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
@@ -25,22 +24,23 @@ std::vector<std::string> module_candidates() {
   return paths;
 }
 
+// Tries each candidate in turn; `error` collects why each one failed.
 const ImageCodecs* open_module(std::string& error) {
+  const auto failed = [&](const std::string& why) { error += (error.empty() ? "" : "; ") + why; };
   for (const std::string& path : module_candidates()) {
     if (!std::filesystem::exists(path)) {
-      error += (error.empty() ? "" : "; ") + path + ": not found";
+      failed(path + ": not found");
       continue;
     }
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed: it lives as long as prism
     if (!handle) {
       const char* why = dlerror();
-      error += (error.empty() ? "" : "; ") + std::string(why ? why : path + ": cannot be opened");
+      failed(why ? why : path + ": cannot be opened");
       continue;
     }
     using Entry = const ImageCodecs* (*)();
-    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "prism_image_codecs_v1"));
-    if (entry) return entry();
-    error += (error.empty() ? "" : "; ") + path + ": has no prism_image_codecs_v1";
+    if (const auto entry = reinterpret_cast<Entry>(dlsym(handle, "prism_image_codecs_v1"))) return entry();
+    failed(path + ": has no prism_image_codecs_v1");
   }
   return nullptr;
 }

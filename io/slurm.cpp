@@ -127,8 +127,8 @@ SlurmQuery query_slurm_jobs(const std::vector<std::string>& job_ids) {
     }
     if (r->exit_code != 0) {
       if (r->err.find("Invalid job id") != std::string::npos) continue;  // forgotten after MinJobAge
-      q.error = r->err.empty() ? fmt::format("scontrol exited {}", r->exit_code) : r->err;
-      while (!q.error.empty() && (q.error.back() == '\n' || q.error.back() == '\r')) q.error.pop_back();
+      q.error = r->message();
+      if (q.error.empty()) q.error = fmt::format("scontrol exited {}", r->exit_code);
       return q;
     }
     for (SlurmJob& j : parse_scontrol_jobs(r->out)) q.jobs.push_back(std::move(j));

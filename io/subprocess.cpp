@@ -35,6 +35,12 @@ struct Pipe {
 
 }  // namespace
 
+std::string CommandResult::message() const {
+  std::string m = err.empty() ? out : err;
+  while (!m.empty() && (m.back() == '\n' || m.back() == '\r' || m.back() == ' ')) m.pop_back();
+  return m;
+}
+
 std::optional<CommandResult> run_command(const std::vector<std::string>& argv) {
   if (argv.empty() || !program_on_path(argv[0])) return std::nullopt;
   Pipe out, err;

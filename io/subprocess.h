@@ -10,6 +10,9 @@ namespace prism {
 struct CommandResult {
   int exit_code = -1;  // the exit status, or 128 + the signal that ended it
   std::string out, err;
+  // What it said, for an error message: stderr (stdout when stderr is empty), without the
+  // trailing newline.
+  std::string message() const;
 };
 
 // Runs argv[0] (looked up on PATH) with the arguments, stdin from /dev/null, and waits for it.

@@ -229,6 +229,10 @@ TEST(Subprocess, CapturesBothStreamsAndTheExitStatus) {
   EXPECT_EQ(r->exit_code, 3);
   EXPECT_EQ(r->out, "out\n");
   EXPECT_EQ(r->err, "err\n");
+  EXPECT_EQ(r->message(), "err");  // stderr, without its newline
+  const std::optional<CommandResult> quiet = run_command({"sh", "-c", "echo only-out; exit 1"});
+  ASSERT_TRUE(quiet);
+  EXPECT_EQ(quiet->message(), "only-out");  // stdout when stderr is empty
   // More than a pipe holds on both streams at once must not block.
   const std::optional<CommandResult> big =
       run_command({"sh", "-c", "head -c 200000 /dev/zero; head -c 200000 /dev/zero >&2"});

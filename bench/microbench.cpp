@@ -154,13 +154,51 @@ void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
 
+// Raw Embree in packets of 8 and in streams of 64 consecutive rays of the workload (camera rays
+// run along image rows and shadow rays follow them, so neighbours are coherent; bounce rays are
+// not). Items are rays. Against ray_benchmark's raw figures this is what packet tracing buys.
+enum class Batch { Packet8, Stream64 };
+
+void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, Batch batch) {
+  const bench::BenchScene& b = bench::bench_scene(scene_path);
+  if (!b.skip_reason.empty()) {
+    state.SkipWithError(b.skip_reason.c_str());
+    return;
+  }
+  const std::vector<Ray>& rays = kind == RayKind::Camera ? b.rays.camera : kind == RayKind::Bounce ? b.rays.bounce : b.rays.shadow;
+  const unsigned n = batch == Batch::Packet8 ? 8 : 64;
+  if (rays.size() < n) {
+    state.SkipWithError("too few rays of this kind in the scene");
+    return;
+  }
+  const size_t batches = rays.size() / n;
+  size_t i = size_t(state.thread_index()) * batches / 2;
+  const bool coherent = kind != RayKind::Bounce;
+  for (auto _ : state) {
+    const Ray* r = &rays[i * n];
+    if (++i == batches) i = 0;
+    if (batch == Batch::Packet8)
+      benchmark::DoNotOptimize(kind == RayKind::Shadow ? bench::raw_occluded8(b.raw, r, coherent) : bench::raw_intersect8(b.raw, r, coherent));
+    else
+      benchmark::DoNotOptimize(kind == RayKind::Shadow ? bench::raw_occluded_stream(b.raw, r, n, coherent)
+                                                       : bench::raw_intersect_stream(b.raw, r, n, coherent));
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * n);
+}
+
 #define PRISM_RAY_BENCHMARKS(name, path)                                                                      \
   BENCHMARK_CAPTURE(ray_benchmark, name##_camera_raw, path, RayKind::Camera, true)->ThreadRange(1, 2)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_benchmark, name##_camera_prism, path, RayKind::Camera, false)->ThreadRange(1, 2)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_benchmark, name##_bounce_raw, path, RayKind::Bounce, true)->ThreadRange(1, 2)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_benchmark, name##_bounce_prism, path, RayKind::Bounce, false)->ThreadRange(1, 2)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_benchmark, name##_shadow_raw, path, RayKind::Shadow, true)->ThreadRange(1, 2)->UseRealTime(); \
-  BENCHMARK_CAPTURE(ray_benchmark, name##_shadow_prism, path, RayKind::Shadow, false)->ThreadRange(1, 2)->UseRealTime();
+  BENCHMARK_CAPTURE(ray_benchmark, name##_shadow_prism, path, RayKind::Shadow, false)->ThreadRange(1, 2)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_camera_raw8, path, RayKind::Camera, Batch::Packet8)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_bounce_raw8, path, RayKind::Bounce, Batch::Packet8)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_shadow_raw8, path, RayKind::Shadow, Batch::Packet8)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_camera_stream64, path, RayKind::Camera, Batch::Stream64)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_bounce_stream64, path, RayKind::Bounce, Batch::Stream64)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_shadow_stream64, path, RayKind::Shadow, Batch::Stream64)->UseRealTime();
 
 PRISM_RAY_BENCHMARKS(cornell_box, PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf")
 PRISM_RAY_BENCHMARKS(heavy_mesh, PRISM_SOURCE_DIR "/scenes/heavy-mesh/heavy-mesh.glb")

@@ -118,4 +118,74 @@ bool raw_occluded(RTCScene scene, const Ray& ray) {
   return r.tfar < 0;
 }
 
+namespace {
+
+RTCIntersectContext context_for(bool coherent) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  return context;
+}
+
+template <typename Packet>
+void fill_packet(Packet& r, const Ray* rays) {
+  for (int k = 0; k < 8; ++k) {
+    r.org_x[k] = rays[k].origin.x, r.org_y[k] = rays[k].origin.y, r.org_z[k] = rays[k].origin.z;
+    r.dir_x[k] = rays[k].dir.x, r.dir_y[k] = rays[k].dir.y, r.dir_z[k] = rays[k].dir.z;
+    r.tnear[k] = rays[k].t_min;
+    r.tfar[k] = rays[k].t_max;
+    r.time[k] = 0;
+    r.mask[k] = ~0u;
+    r.id[k] = unsigned(k);
+    r.flags[k] = 0;
+  }
+}
+
+constexpr int kAllLanes[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+
+}  // namespace
+
+int raw_intersect8(RTCScene scene, const Ray* rays, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  alignas(32) RTCRayHit8 rh;
+  fill_packet(rh.ray, rays);
+  for (int k = 0; k < 8; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect8(kAllLanes, scene, &context, &rh);
+  int hits = 0;
+  for (int k = 0; k < 8; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  return hits;
+}
+
+int raw_occluded8(RTCScene scene, const Ray* rays, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  alignas(32) RTCRay8 r;
+  fill_packet(r, rays);
+  rtcOccluded8(kAllLanes, scene, &context, &r);
+  int hits = 0;
+  for (int k = 0; k < 8; ++k) hits += r.tfar[k] < 0;
+  return hits;
+}
+
+int raw_intersect_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  thread_local std::vector<RTCRayHit> rh;
+  rh.resize(n);
+  for (unsigned i = 0; i < n; ++i) rh[i] = to_rayhit(rays[i]);
+  rtcIntersect1M(scene, &context, rh.data(), n, sizeof(RTCRayHit));
+  int hits = 0;
+  for (unsigned i = 0; i < n; ++i) hits += rh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  return hits;
+}
+
+int raw_occluded_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  thread_local std::vector<RTCRay> r;
+  r.resize(n);
+  for (unsigned i = 0; i < n; ++i) r[i] = to_rayhit(rays[i]).ray;
+  rtcOccluded1M(scene, &context, r.data(), n, sizeof(RTCRay));
+  int hits = 0;
+  for (unsigned i = 0; i < n; ++i) hits += r[i].tfar < 0;
+  return hits;
+}
+
 }  // namespace prism::bench

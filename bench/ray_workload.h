@@ -33,5 +33,12 @@ const BenchScene& bench_scene(const std::string& path);
 // Raw Embree queries as prism issues them (rtcIntersect1 / rtcOccluded1, one ray at a time).
 bool raw_intersect(RTCScene scene, const Ray& ray, bool coherent);
 bool raw_occluded(RTCScene scene, const Ray& ray);
+// The same queries eight rays at a time (rtcIntersect8 / rtcOccluded8): how much a wavefront
+// design that traces paths in packets could gain. Returns how many of the eight rays hit.
+int raw_intersect8(RTCScene scene, const Ray* rays, bool coherent);
+int raw_occluded8(RTCScene scene, const Ray* rays, bool coherent);
+// A stream of n rays in one call (rtcIntersect1M / rtcOccluded1M), Embree's own reordering.
+int raw_intersect_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent);
+int raw_occluded_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent);
 
 }  // namespace prism::bench

@@ -173,7 +173,7 @@ void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKin
   }
   const size_t batches = rays.size() / n;
   size_t i = size_t(state.thread_index()) * batches / 2;
-  const bool coherent = kind != RayKind::Bounce;
+  const bool coherent = kind == RayKind::Camera;
   for (auto _ : state) {
     const Ray* r = &rays[i * n];
     if (++i == batches) i = 0;

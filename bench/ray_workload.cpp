@@ -141,7 +141,7 @@ void fill_packet(Packet& r, const Ray* rays) {
   }
 }
 
-constexpr int kAllLanes[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+alignas(32) constexpr int kAllLanes[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
 
 }  // namespace
 

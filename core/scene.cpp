@@ -100,25 +100,27 @@ RTCGeometry triangle_geometry(RTCDevice device, PrimitiveDesc& prim) {
 }  // namespace
 
 void Scene::alpha_filter(const RTCFilterFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
   const auto* data = static_cast<const AlphaFilterData*>(args->geometryUserPtr);
   const SceneDesc& desc = data->scene->desc_;
   const PrimitiveDesc& prim = desc.meshes[data->mesh].primitives[data->primitive];
-  const uint32_t tri = RTCHitN_primID(args->hit, 1, 0);
-  const float b1 = RTCHitN_u(args->hit, 1, 0), b2 = RTCHitN_v(args->hit, 1, 0), b0 = 1.0f - b1 - b2;
-  Vec2 uv{0, 0};
-  if (!prim.uvs.empty()) {
-    const uint32_t* idx = &prim.indices[3 * size_t(tri)];
-    const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
-    uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    const uint32_t tri = RTCHitN_primID(args->hit, N, i);
+    const float b1 = RTCHitN_u(args->hit, N, i), b2 = RTCHitN_v(args->hit, N, i), b0 = 1.0f - b1 - b2;
+    Vec2 uv{0, 0};
+    if (!prim.uvs.empty()) {
+      const uint32_t* idx = &prim.indices[3 * size_t(tri)];
+      const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
+      uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+    }
+    const auto bits = float_bits;
+    RTCRayN* r = args->ray;  // Embree 3 declares the accessors on non-const rays
+    const uint64_t h = hash_values(bits(RTCRayN_org_x(r, N, i)), bits(RTCRayN_org_y(r, N, i)), bits(RTCRayN_org_z(r, N, i)),
+                                   bits(RTCRayN_dir_x(r, N, i)), bits(RTCRayN_dir_y(r, N, i)), bits(RTCRayN_dir_z(r, N, i)),
+                                   uint64_t(tri), bits(b1), bits(b2));
+    if (!data->scene->keeps_hit(prim.material, uv, h)) args->valid[i] = 0;
   }
-  const auto bits = float_bits;
-  RTCRayN* r = args->ray;  // Embree 3 declares the accessors on non-const rays
-  const uint64_t h = hash_values(bits(RTCRayN_org_x(r, 1, 0)), bits(RTCRayN_org_y(r, 1, 0)), bits(RTCRayN_org_z(r, 1, 0)),
-                                 bits(RTCRayN_dir_x(r, 1, 0)), bits(RTCRayN_dir_y(r, 1, 0)), bits(RTCRayN_dir_z(r, 1, 0)),
-                                 uint64_t(tri), bits(b1), bits(b2));
-  const bool keep = data->scene->keeps_hit(prim.material, uv, h);
-  if (!keep) args->valid[0] = 0;
 }
 
 bool Scene::keeps_hit(int material, Vec2 uv, uint64_t hash) const {
@@ -256,11 +258,11 @@ uint64_t Scene::triangle_count() const {
 
 namespace {
 
-// An intersection context that names the triangle a ray leaves (Embree passes the context to the
-// filter, so it must come first).
+// An intersection context that names the triangle each ray leaves, by the ray's id (its lane in
+// a packet; 0 for a single ray). Embree passes the context to the filter, so it must come first.
 struct LeavingContext {
   RTCIntersectContext context;
-  TriangleId leaves;
+  const TriangleId* leaves;
 };
 
 // Embree's test sees a triangle through its float normal, which on a needle is off by up to
@@ -268,30 +270,92 @@ struct LeavingContext {
 // triangle's plane can appear on the wrong side of the offset origin, so the ray hits the face it
 // just left. No ray meets a plane twice, so such hits are dropped (Cycles skips its own primitive too).
 void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  const TriangleId& left = reinterpret_cast<const LeavingContext*>(args->context)->leaves;
-  if (RTCHitN_primID(args->hit, 1, 0) == left.primitive && RTCHitN_geomID(args->hit, 1, 0) == left.geometry &&
-      RTCHitN_instID(args->hit, 1, 0, 0) == left.instance)
-    args->valid[0] = 0;
+  const TriangleId* leaves = reinterpret_cast<const LeavingContext*>(args->context)->leaves;
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    const TriangleId& left = leaves[RTCRayN_id(args->ray, N, i)];
+    if (RTCHitN_primID(args->hit, N, i) == left.primitive && RTCHitN_geomID(args->hit, N, i) == left.geometry &&
+        RTCHitN_instID(args->hit, N, i, 0) == left.instance)
+      args->valid[i] = 0;
+  }
 }
 
-LeavingContext leaving_context(const Ray& ray) {
+// `leaves` holds one entry per ray id; the filter runs only when some ray leaves a triangle.
+LeavingContext leaving_context(const TriangleId* leaves, int n, bool coherent) {
   LeavingContext c;
   rtcInitIntersectContext(&c.context);
-  if (ray.leaves.valid()) {
-    c.context.filter = skip_left_triangle;
-    c.leaves = ray.leaves;
-  }
+  if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  c.leaves = leaves;
+  for (int k = 0; k < n; ++k)
+    if (leaves[k].valid()) c.context.filter = skip_left_triangle;
   return c;
+}
+
+// Lanes [0, n) of an eight-wide packet hold `rays` (ids = lanes); the others are switched off.
+template <typename Packet>
+void fill_packet(Packet& p, int (&valid)[Scene::kPacketSize], const Ray* rays, int n) {
+  constexpr int kPacketSize = Scene::kPacketSize;
+  for (int k = 0; k < kPacketSize; ++k) {
+    const Ray& r = rays[k < n ? k : 0];
+    valid[k] = k < n ? -1 : 0;
+    p.org_x[k] = r.origin.x, p.org_y[k] = r.origin.y, p.org_z[k] = r.origin.z;
+    p.dir_x[k] = r.dir.x, p.dir_y[k] = r.dir.y, p.dir_z[k] = r.dir.z;
+    p.tnear[k] = r.t_min;
+    p.tfar[k] = r.t_max;
+    p.time[k] = 0.0f;
+    p.mask[k] = ~0u;
+    p.id[k] = unsigned(k);
+    p.flags[k] = 0;
+  }
 }
 
 }  // namespace
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
-  LeavingContext c = leaving_context(ray);
-  if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  LeavingContext c = leaving_context(&ray.leaves, 1, coherent);
   RTCRayHit rh = to_embree(ray);
   rtcIntersect1(top_, &c.context, &rh);
+  return resolve_hit(ray, rh, hit);
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  LeavingContext c = leaving_context(&ray.leaves, 1, false);
+  RTCRay r = to_embree(ray).ray;
+  rtcOccluded1(top_, &c.context, &r);
+  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
+  TriangleId leaves[kPacketSize];
+  for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
+  LeavingContext c = leaving_context(leaves, n, coherent);
+  alignas(32) RTCRayHit8 rh;
+  alignas(32) int valid[kPacketSize];
+  fill_packet(rh.ray, valid, rays, n);
+  for (int k = 0; k < kPacketSize; ++k) {
+    rh.hit.geomID[k] = rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, top_, &c.context, &rh);
+  for (int k = 0; k < n; ++k) {
+    const RTCRayHit one = rtcGetRayHitFromRayHitN(reinterpret_cast<RTCRayHitN*>(&rh), kPacketSize, unsigned(k));
+    found[k] = resolve_hit(rays[k], one, hits[k]);
+  }
+}
+
+void Scene::occluded_packet(const Ray* rays, int n, bool* occluded) const {
+  TriangleId leaves[kPacketSize];
+  for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
+  LeavingContext c = leaving_context(leaves, n, false);
+  alignas(32) RTCRay8 r;
+  alignas(32) int valid[kPacketSize];
+  fill_packet(r, valid, rays, n);
+  rtcOccluded8(valid, top_, &c.context, &r);
+  for (int k = 0; k < n; ++k) occluded[k] = r.tfar[k] < 0;
+}
+
+bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
@@ -304,13 +368,6 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
     reconstruct_triangle_hit(g.instance, g.primitive, rh, hit);
   }
   return true;
-}
-
-bool Scene::occluded(const Ray& ray) const {
-  LeavingContext c = leaving_context(ray);
-  RTCRay r = to_embree(ray).ray;
-  rtcOccluded1(top_, &c.context, &r);
-  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 
 void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const {

@@ -40,6 +40,12 @@ class Scene {
   bool intersect(const Ray& ray, SurfaceHit& hit, bool coherent = false) const;
   // True when anything blocks the ray within (t_min, t_max).
   bool occluded(const Ray& ray) const;
+  // The same queries for n <= kPacketSize rays at once (Embree's eight-wide packets): lane k
+  // gives what intersect / occluded give for rays[k]. Coherent rays (camera rays, shadow rays
+  // from neighbouring paths toward one light) are traced several times faster than one by one.
+  static constexpr int kPacketSize = 8;
+  void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent = false) const;
+  void occluded_packet(const Ray* rays, int n, bool* occluded) const;
 
   const SceneDesc& desc() const { return desc_; }
   // The world position of the coordinates' origin: world = scene coordinates + origin().
@@ -71,6 +77,8 @@ class Scene {
   void bake_single_use_meshes();
   void attach_alpha_filter(RTCGeometry geom, int mesh, int primitive);
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
+  // Fills `hit` from Embree's answer for `ray`; false when the ray hit nothing.
+  bool resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 

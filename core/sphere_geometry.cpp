@@ -59,8 +59,12 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   tsan_release(args->geometryUserPtr);  // ...and is done before rtcCommitScene returns
 }
 
-Ray ray_of(const RTCRay& r) {
-  return Ray{{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar};
+// Lane i of a ray packet of size N (Embree's SoA layout; N == 1 is a single RTCRay).
+Ray ray_of(RTCRayN* r, unsigned N, unsigned i) {
+  return Ray{{RTCRayN_org_x(r, N, i), RTCRayN_org_y(r, N, i), RTCRayN_org_z(r, N, i)},
+             {RTCRayN_dir_x(r, N, i), RTCRayN_dir_y(r, N, i), RTCRayN_dir_z(r, N, i)},
+             RTCRayN_tnear(r, N, i),
+             RTCRayN_tfar(r, N, i)};
 }
 
 // The nearest root in the ray's interval that the sphere's coverage keeps, or a negative value.
@@ -82,29 +86,37 @@ float nearest_hit(const SphereGeometry& g, unsigned prim, const Ray& ray) {
   return -1.0f;
 }
 
-// rtcIntersect1 / rtcOccluded1 call these with N == 1.
+// Called with N == 1 by rtcIntersect1 / rtcOccluded1 and with N up to the packet size by
+// rtcIntersect8 / rtcOccluded8; lanes whose valid entry is 0 are left alone.
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const float tf = nearest_hit(geometry_of(args->geometryUserPtr), args->primID, ray_of(rayhit->ray));
-  if (tf < 0) return;
-  const SphereDesc& s = (*geometry_of(args->geometryUserPtr).spheres)[args->primID];
-  rayhit->ray.tfar = tf;
-  rayhit->hit.u = 0;
-  rayhit->hit.v = 0;
-  rayhit->hit.Ng_x = rayhit->ray.org_x + tf * rayhit->ray.dir_x - s.center.x;
-  rayhit->hit.Ng_y = rayhit->ray.org_y + tf * rayhit->ray.dir_y - s.center.y;
-  rayhit->hit.Ng_z = rayhit->ray.org_z + tf * rayhit->ray.dir_z - s.center.z;
-  rayhit->hit.primID = args->primID;
-  rayhit->hit.geomID = args->geomID;
-  rayhit->hit.instID[0] = args->context->instID[0];
+  const SphereGeometry& g = geometry_of(args->geometryUserPtr);
+  const SphereDesc& s = (*g.spheres)[args->primID];
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const Ray r = ray_of(ray, args->N, i);
+    const float tf = nearest_hit(g, args->primID, r);
+    if (tf < 0) continue;
+    RTCRayN_tfar(ray, args->N, i) = tf;
+    RTCHitN_u(hit, args->N, i) = 0;
+    RTCHitN_v(hit, args->N, i) = 0;
+    RTCHitN_Ng_x(hit, args->N, i) = r.origin.x + tf * r.dir.x - s.center.x;
+    RTCHitN_Ng_y(hit, args->N, i) = r.origin.y + tf * r.dir.y - s.center.y;
+    RTCHitN_Ng_z(hit, args->N, i) = r.origin.z + tf * r.dir.z - s.center.z;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
 }
 
 void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  if (nearest_hit(geometry_of(args->geometryUserPtr), args->primID, ray_of(*ray)) >= 0)
-    ray->tfar = -std::numeric_limits<float>::infinity();
+  const SphereGeometry& g = geometry_of(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    if (nearest_hit(g, args->primID, ray_of(args->ray, args->N, i)) >= 0)
+      RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+  }
 }
 
 }  // namespace

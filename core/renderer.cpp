@@ -40,40 +40,68 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
 
   auto stopping = [&] { return progress && progress->stop_requested(); };
 
+  // A tile's samples go to the integrator in packets of consecutive (pixel, sample) pairs, in the
+  // order a one-by-one loop would take them, and reach the film in that order.
+  constexpr int kLanes = Scene::kPacketSize;
   auto render_tile = [&](int tile_index) {
     const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
-    const auto sampler = make_sampler(settings.sampler, settings.seed);
+    std::unique_ptr<Sampler> lane_samplers[kLanes];
+    Sampler* samplers[kLanes];
+    for (int k = 0; k < kLanes; ++k) samplers[k] = (lane_samplers[k] = make_sampler(settings.sampler, settings.seed)).get();
     RayCounters counters;
-    uint64_t nonfinite = 0, taken = 0;
-    AovSample aov;  // filled only when the film has AOVs
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
+    uint64_t nonfinite = 0;
+    AovSample aov[kLanes];  // filled only when the film has AOVs
+    AovSample* aovs[kLanes];
+    for (int k = 0; k < kLanes; ++k) aovs[k] = &aov[k];
+    Ray rays[kLanes];
+    RadianceSample L[kLanes];
+    int lane_x[kLanes], lane_y[kLanes];
+    int lanes = 0;
+    auto flush = [&] {
+      if (lanes == 0) return;
+      if (path_aovs)
+        for (int k = 0; k < lanes; ++k) aov[k] = AovSample{};
+      integrator.li_packet(scene, rays, samplers, lanes, counters, path_aovs ? aovs : nullptr, L);
+      for (int k = 0; k < lanes; ++k) {
+        const int x = lane_x[k], y = lane_y[k];
+        // A non-finite estimate counts as a black sample, so counts stay sample indices.
+        const bool finite = is_finite(L[k].radiance) && std::isfinite(L[k].alpha);
+        film.add_sample(x, y, finite ? L[k].radiance : Rgb(0.0f), finite ? L[k].alpha : 0.0f);
+        if (path_aovs) {
+          AovSample& a = aov[k];
+          if (!finite) a.emission = a.direct = a.indirect = Rgb(0.0f);
+          const float depth = a.hit ? camera.planar_depth(a.position) : kBackgroundDepth;
+          if (a.hit) a.position = a.position + scene.origin();  // back to world coordinates
+          film.add_aov_sample(x, y, a, depth);
+        }
+        nonfinite += !finite;
+      }
+      if (progress) progress->samples_done.fetch_add(uint64_t(lanes), std::memory_order_relaxed);
+      samples.fetch_add(uint64_t(lanes), std::memory_order_relaxed);
+      lanes = 0;
+    };
+    for (int y = y0; y < y1 && !stopping(); ++y) {
+      for (int x = x0; x < x1 && !stopping(); ++x) {
         const uint64_t end = target[size_t(y) * width + x];
         const int px = x + x_offset, py = y + y_offset;
-        for (uint64_t s = film.sample_count(x, y); s < end && !stopping(); ++s) {
-          sampler->start_pixel_sample(px, py, settings.first_sample + s);
-          const Vec2 jitter = sampler->next_2d();  // box filter: uniform in the pixel
-          const Ray ray = camera.generate_ray(float(px) + jitter.x, float(py) + jitter.y);
-          if (path_aovs) aov = AovSample{};
-          const RadianceSample L = integrator.li(scene, ray, *sampler, counters, path_aovs ? &aov : nullptr);
-          // A non-finite estimate counts as a black sample, so counts stay sample indices.
-          const bool finite = is_finite(L.radiance) && std::isfinite(L.alpha);
-          film.add_sample(x, y, finite ? L.radiance : Rgb(0.0f), finite ? L.alpha : 0.0f);
-          if (path_aovs) {
-            if (!finite) aov.emission = aov.direct = aov.indirect = Rgb(0.0f);
-            const float depth = aov.hit ? camera.planar_depth(aov.position) : kBackgroundDepth;
-            if (aov.hit) aov.position = aov.position + scene.origin();  // back to world coordinates
-            film.add_aov_sample(x, y, aov, depth);
+        // film.sample_count does not move until the packet reaches the film: count from there.
+        for (uint64_t s = film.sample_count(x, y); s < end; ++s) {
+          if (lanes == kLanes) {
+            flush();
+            if (stopping()) break;
           }
-          nonfinite += !finite;
-          ++taken;
+          Sampler& sampler = *samplers[lanes];
+          sampler.start_pixel_sample(px, py, settings.first_sample + s);
+          const Vec2 jitter = sampler.next_2d();  // box filter: uniform in the pixel
+          rays[lanes] = camera.generate_ray(float(px) + jitter.x, float(py) + jitter.y);
+          lane_x[lanes] = x;
+          lane_y[lanes] = y;
+          ++lanes;
         }
-        if (progress) progress->samples_done.fetch_add(taken, std::memory_order_relaxed);
-        samples.fetch_add(taken, std::memory_order_relaxed);
-        taken = 0;
       }
     }
+    if (!stopping()) flush();
     std::lock_guard lock(stats_mutex);
     stats.rays += counters;
     stats.nonfinite_samples += nonfinite;

@@ -21,11 +21,24 @@ class PathIntegrator final : public Integrator {
 
   RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
                     AovSample* aov = nullptr) const override;
+  // Traces the lanes' paths in lockstep, bounce by bounce: their extension rays and their shadow
+  // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
+  void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
+                 AovSample* const* aovs, RadianceSample* out) const override;
 
  private:
-  Rgb direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
-                   const MaterialDesc& material, bool from_front, float u_pick, Vec2 u_point,
-                   RayCounters& counters) const;
+  struct Path;
+  struct ShadowQuery;
+
+  // One bounce of a path at the surface its ray found (or the sky): gathers emission, queues
+  // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
+  // the path ends here.
+  bool advance(const Scene& scene, Path& path, const SurfaceHit* hit, ShadowQuery& shadow, RayCounters& counters) const;
+  // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
+  // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
+  ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
+                           const MaterialDesc& material, bool from_front, float u_pick, Vec2 u_point) const;
+  RadianceSample finish(Path& path) const;
 
   int max_depth_;
   int rr_start_depth_;

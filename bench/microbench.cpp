@@ -129,17 +129,26 @@ BENCHMARK(BM_OccludedRandomRays)->ThreadRange(1, 2)->UseRealTime();
 // and sphere callbacks). Items are rays; run with 1 and 2 threads.
 enum class RayKind { Camera, Bounce, Shadow };
 
-void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, bool raw) {
-  const bench::BenchScene& b = bench::bench_scene(scene_path);
+// The workload's rays of one kind, or null once the benchmark is marked skipped (the scene is
+// absent, or it has fewer than `at_least` such rays).
+const std::vector<Ray>* workload_rays(benchmark::State& state, const bench::BenchScene& b, RayKind kind, size_t at_least) {
   if (!b.skip_reason.empty()) {
     state.SkipWithError(b.skip_reason.c_str());
-    return;
+    return nullptr;
   }
   const std::vector<Ray>& rays = kind == RayKind::Camera ? b.rays.camera : kind == RayKind::Bounce ? b.rays.bounce : b.rays.shadow;
-  if (rays.empty()) {
-    state.SkipWithError("no rays of this kind in the scene");
-    return;
+  if (rays.size() < at_least) {
+    state.SkipWithError("too few rays of this kind in the scene");
+    return nullptr;
   }
+  return &rays;
+}
+
+void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, bool raw) {
+  const bench::BenchScene& b = bench::bench_scene(scene_path);
+  const std::vector<Ray>* workload = workload_rays(state, b, kind, 1);
+  if (!workload) return;
+  const std::vector<Ray>& rays = *workload;
   // Threads start at different offsets and walk the same list.
   size_t i = size_t(state.thread_index()) * rays.size() / 2;
   SurfaceHit hit;
@@ -161,16 +170,10 @@ enum class Batch { Packet8, Stream64 };
 
 void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, Batch batch) {
   const bench::BenchScene& b = bench::bench_scene(scene_path);
-  if (!b.skip_reason.empty()) {
-    state.SkipWithError(b.skip_reason.c_str());
-    return;
-  }
-  const std::vector<Ray>& rays = kind == RayKind::Camera ? b.rays.camera : kind == RayKind::Bounce ? b.rays.bounce : b.rays.shadow;
   const unsigned n = batch == Batch::Packet8 ? 8 : 64;
-  if (rays.size() < n) {
-    state.SkipWithError("too few rays of this kind in the scene");
-    return;
-  }
+  const std::vector<Ray>* workload = workload_rays(state, b, kind, n);
+  if (!workload) return;
+  const std::vector<Ray>& rays = *workload;
   const size_t batches = rays.size() / n;
   size_t i = size_t(state.thread_index()) * batches / 2;
   const bool coherent = kind == RayKind::Camera;

@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "core/embree_device.h"
+#include "core/embree_rays.h"
 #include "core/frame.h"
 #include "core/pcg32.h"
 #include "core/render_origin.h"
@@ -15,6 +16,13 @@
 
 namespace prism::bench {
 namespace {
+
+RTCIntersectContext context_for(bool coherent) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  return context;
+}
 
 RTCScene build_raw(const SceneDesc& desc) {
   std::vector<float> vertices;
@@ -65,17 +73,6 @@ RayWorkload make_workload(const Scene& scene, const CameraDesc& cam_desc) {
   return w;
 }
 
-RTCRayHit to_rayhit(const Ray& ray) {
-  RTCRayHit rh{};
-  rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
-  rh.ray.tnear = ray.t_min;
-  rh.ray.tfar = ray.t_max;
-  rh.ray.mask = ~0u;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
 
 }  // namespace
 
@@ -102,67 +99,39 @@ const BenchScene& bench_scene(const std::string& path) {
 }
 
 bool raw_intersect(RTCScene scene, const Ray& ray, bool coherent) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  RTCRayHit rh = to_rayhit(ray);
+  RTCIntersectContext context = context_for(coherent);
+  RTCRayHit rh = to_embree(ray);
   rtcIntersect1(scene, &context, &rh);
   return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 bool raw_occluded(RTCScene scene, const Ray& ray) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRay r = to_rayhit(ray).ray;
+  RTCIntersectContext context = context_for(false);
+  RTCRay r = to_embree(ray).ray;
   rtcOccluded1(scene, &context, &r);
   return r.tfar < 0;
 }
 
-namespace {
-
-RTCIntersectContext context_for(bool coherent) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  return context;
-}
-
-template <typename Packet>
-void fill_packet(Packet& r, const Ray* rays) {
-  for (int k = 0; k < 8; ++k) {
-    r.org_x[k] = rays[k].origin.x, r.org_y[k] = rays[k].origin.y, r.org_z[k] = rays[k].origin.z;
-    r.dir_x[k] = rays[k].dir.x, r.dir_y[k] = rays[k].dir.y, r.dir_z[k] = rays[k].dir.z;
-    r.tnear[k] = rays[k].t_min;
-    r.tfar[k] = rays[k].t_max;
-    r.time[k] = 0;
-    r.mask[k] = ~0u;
-    r.id[k] = unsigned(k);
-    r.flags[k] = 0;
-  }
-}
-
-alignas(32) constexpr int kAllLanes[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
-
-}  // namespace
-
 int raw_intersect8(RTCScene scene, const Ray* rays, bool coherent) {
   RTCIntersectContext context = context_for(coherent);
   alignas(32) RTCRayHit8 rh;
-  fill_packet(rh.ray, rays);
-  for (int k = 0; k < 8; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect8(kAllLanes, scene, &context, &rh);
+  alignas(32) int valid[kEmbreePacketSize];
+  fill_packet(rh.ray, valid, rays, kEmbreePacketSize);
+  for (int k = 0; k < kEmbreePacketSize; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect8(valid, scene, &context, &rh);
   int hits = 0;
-  for (int k = 0; k < 8; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  for (int k = 0; k < kEmbreePacketSize; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
   return hits;
 }
 
 int raw_occluded8(RTCScene scene, const Ray* rays, bool coherent) {
   RTCIntersectContext context = context_for(coherent);
   alignas(32) RTCRay8 r;
-  fill_packet(r, rays);
-  rtcOccluded8(kAllLanes, scene, &context, &r);
+  alignas(32) int valid[kEmbreePacketSize];
+  fill_packet(r, valid, rays, kEmbreePacketSize);
+  rtcOccluded8(valid, scene, &context, &r);
   int hits = 0;
-  for (int k = 0; k < 8; ++k) hits += r.tfar[k] < 0;
+  for (int k = 0; k < kEmbreePacketSize; ++k) hits += r.tfar[k] < 0;
   return hits;
 }
 
@@ -170,7 +139,7 @@ int raw_intersect_stream(RTCScene scene, const Ray* rays, unsigned n, bool coher
   RTCIntersectContext context = context_for(coherent);
   thread_local std::vector<RTCRayHit> rh;
   rh.resize(n);
-  for (unsigned i = 0; i < n; ++i) rh[i] = to_rayhit(rays[i]);
+  for (unsigned i = 0; i < n; ++i) rh[i] = to_embree(rays[i]);
   rtcIntersect1M(scene, &context, rh.data(), n, sizeof(RTCRayHit));
   int hits = 0;
   for (unsigned i = 0; i < n; ++i) hits += rh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
@@ -181,7 +150,7 @@ int raw_occluded_stream(RTCScene scene, const Ray* rays, unsigned n, bool cohere
   RTCIntersectContext context = context_for(coherent);
   thread_local std::vector<RTCRay> r;
   r.resize(n);
-  for (unsigned i = 0; i < n; ++i) r[i] = to_rayhit(rays[i]).ray;
+  for (unsigned i = 0; i < n; ++i) r[i] = to_embree(rays[i]).ray;
   rtcOccluded1M(scene, &context, r.data(), n, sizeof(RTCRay));
   int hits = 0;
   for (unsigned i = 0; i < n; ++i) hits += r[i].tfar < 0;

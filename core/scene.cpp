@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/embree_device.h"
+#include "core/embree_rays.h"
 #include "core/face_normal.h"
 #include "core/hash.h"
 #include "core/render_origin.h"
@@ -225,30 +226,6 @@ Scene::~Scene() {
     if (s) rtcReleaseScene(s);
 }
 
-namespace {
-
-RTCRayHit to_embree(const Ray& ray) {
-  RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.dir.x;
-  rh.ray.dir_y = ray.dir.y;
-  rh.ray.dir_z = ray.dir.z;
-  rh.ray.tnear = ray.t_min;
-  rh.ray.tfar = ray.t_max;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = ~0u;  // a zero mask misses everything
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
-}  // namespace
-
 uint64_t Scene::triangle_count() const {
   uint64_t n = 0;
   for (const InstanceDesc& inst : desc_.instances)
@@ -290,24 +267,6 @@ LeavingContext leaving_context(const TriangleId* leaves, int n, bool coherent) {
   for (int k = 0; k < n; ++k)
     if (leaves[k].valid()) c.context.filter = skip_left_triangle;
   return c;
-}
-
-// Lanes [0, n) of an eight-wide packet hold `rays` (ids = lanes); the others are switched off.
-template <typename Packet>
-void fill_packet(Packet& p, int (&valid)[Scene::kPacketSize], const Ray* rays, int n) {
-  constexpr int kPacketSize = Scene::kPacketSize;
-  for (int k = 0; k < kPacketSize; ++k) {
-    const Ray& r = rays[k < n ? k : 0];
-    valid[k] = k < n ? -1 : 0;
-    p.org_x[k] = r.origin.x, p.org_y[k] = r.origin.y, p.org_z[k] = r.origin.z;
-    p.dir_x[k] = r.dir.x, p.dir_y[k] = r.dir.y, p.dir_z[k] = r.dir.z;
-    p.tnear[k] = r.t_min;
-    p.tfar[k] = r.t_max;
-    p.time[k] = 0.0f;
-    p.mask[k] = ~0u;
-    p.id[k] = unsigned(k);
-    p.flags[k] = 0;
-  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/embree_rays.h"
 #include "core/emitters.h"
 #include "core/ray.h"
 #include "core/scene_desc.h"
@@ -43,7 +44,7 @@ class Scene {
   // The same queries for n <= kPacketSize rays at once (Embree's eight-wide packets): lane k
   // gives what intersect / occluded give for rays[k]. Coherent rays (camera rays, shadow rays
   // from neighbouring paths toward one light) are traced several times faster than one by one.
-  static constexpr int kPacketSize = 8;
+  static constexpr int kPacketSize = kEmbreePacketSize;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent = false) const;
   void occluded_packet(const Ray* rays, int n, bool* occluded) const;
 

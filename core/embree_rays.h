@@ -1,0 +1,51 @@
+// prism's rays in Embree's layouts: one ray (RTCRayHit) and eight-wide packets (RTCRay8, RTCRayHit8's ray).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include "core/ray.h"
+
+namespace prism {
+
+constexpr int kEmbreePacketSize = 8;
+
+// One ray with no hit yet.
+inline RTCRayHit to_embree(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x;
+  rh.ray.dir_y = ray.dir.y;
+  rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.t_min;
+  rh.ray.tfar = ray.t_max;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = ~0u;  // a zero mask misses everything
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+// Lanes [0, n) of an eight-wide packet hold `rays`, with ray id = lane; the other lanes are
+// switched off in `valid` (which Embree wants aligned to 32 bytes, as the packet).
+template <typename Packet>
+void fill_packet(Packet& p, int (&valid)[kEmbreePacketSize], const Ray* rays, int n) {
+  for (int k = 0; k < kEmbreePacketSize; ++k) {
+    const Ray& r = rays[k < n ? k : 0];
+    valid[k] = k < n ? -1 : 0;
+    p.org_x[k] = r.origin.x, p.org_y[k] = r.origin.y, p.org_z[k] = r.origin.z;
+    p.dir_x[k] = r.dir.x, p.dir_y[k] = r.dir.y, p.dir_z[k] = r.dir.z;
+    p.tnear[k] = r.t_min;
+    p.tfar[k] = r.t_max;
+    p.time[k] = 0.0f;
+    p.mask[k] = ~0u;
+    p.id[k] = unsigned(k);
+    p.flags[k] = 0;
+  }
+}
+
+}  // namespace prism

@@ -1,7 +1,9 @@
 // Scale-aware ray spawning: offsets origins by the bounded error of the hit point, never a fixed epsilon.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/ray.h"
@@ -18,6 +20,17 @@ inline constexpr float kHitRelativeError = 0x1p-19f;
 // target point is itself offset, so this only absorbs Embree's error in t.
 inline constexpr float kShadowEpsilon = 1e-4f;
 
+// The next float above / below v, as std::nextafter toward +inf / -inf, without the libm call:
+// adjacent floats of one sign have adjacent bit patterns (IEEE 754 §3.4), so a step away from
+// zero adds one to the pattern and a step toward it subtracts one. NaN and +inf stay as they are.
+inline float next_float_up(float v) {
+  if (std::isnan(v) || v == std::numeric_limits<float>::infinity()) return v;
+  if (v == 0.0f) v = 0.0f;  // -0 steps up to the smallest positive denormal, as +0 does
+  const uint32_t bits = std::bit_cast<uint32_t>(v);
+  return std::bit_cast<float>(v >= 0 ? bits + 1 : bits - 1);
+}
+inline float next_float_down(float v) { return -next_float_up(-v); }
+
 // Offsets p off its surface (normal n, per-axis error bound err) to the side that w points to,
 // then rounds each coordinate away from p so the offset survives float rounding
 // (pbrt-v4, "Robust Spawned Ray Origins", Physically Based Rendering 4th ed. §6.8.6).
@@ -28,9 +41,9 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& err, const Vec3& n, con
   Vec3 po = p + offset;
   for (int i = 0; i < 3; ++i) {
     if (offset[i] > 0)
-      po[i] = std::nextafter(po[i], std::numeric_limits<float>::infinity());
+      po[i] = next_float_up(po[i]);
     else if (offset[i] < 0)
-      po[i] = std::nextafter(po[i], -std::numeric_limits<float>::infinity());
+      po[i] = next_float_down(po[i]);
   }
   return po;
 }

@@ -1,7 +1,10 @@
 // Ray queries: sphere and triangle hits, transforms and instancing, and spawned rays that never re-hit.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "core/frame.h"
 #include "core/pcg32.h"
@@ -40,6 +43,26 @@ TEST(SphereIntersection, GrazingAndMiss) {
   const Ray graze{Vec3(0, 0.9999f, -5), Vec3(0, 0, 1)};
   const double t = intersect_sphere(Vec3(0, 0, 0), 1.0f, graze);
   EXPECT_NEAR(t, 5.0 - std::sqrt(1.0 - 0.9999 * 0.9999), 1e-5);
+}
+
+// The spawn offsets' float stepping must be std::nextafter's, including at signed zeros,
+// denormals, the largest finite floats, infinities and NaN, and across random bit patterns.
+TEST(SpawnOffsets, FloatStepsMatchNextafter) {
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = {0.0f,  -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+                               1.0f,  -1.0f, std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                               inf,   -inf,  std::numeric_limits<float>::min(), -std::numeric_limits<float>::min()};
+  Pcg32 rng(7, 1);
+  for (int i = 0; i < 100000; ++i) values.push_back(std::bit_cast<float>(rng.next_u32()));
+  for (float v : values) {
+    if (std::isnan(v)) {
+      EXPECT_TRUE(std::isnan(next_float_up(v)));
+      EXPECT_TRUE(std::isnan(next_float_down(v)));
+      continue;
+    }
+    EXPECT_EQ(std::bit_cast<uint32_t>(next_float_up(v)), std::bit_cast<uint32_t>(std::nextafter(v, inf))) << v;
+    EXPECT_EQ(std::bit_cast<uint32_t>(next_float_down(v)), std::bit_cast<uint32_t>(std::nextafter(v, -inf))) << v;
+  }
 }
 
 TEST(SceneHits, SphereHitHasOutwardNormalAndExactPoint) {

@@ -286,6 +286,16 @@ bool Scene::occluded(const Ray& ray) const {
 }
 
 void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
+  for (int first = 0; first < n; first += kPacketSize)
+    intersect8(rays + first, std::min(n - first, kPacketSize), hits + first, found + first, coherent);
+}
+
+void Scene::occluded_packet(const Ray* rays, int n, bool* occluded) const {
+  for (int first = 0; first < n; first += kPacketSize)
+    occluded8(rays + first, std::min(n - first, kPacketSize), occluded + first);
+}
+
+void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
   TriangleId leaves[kPacketSize];
   for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
   LeavingContext c = leaving_context(leaves, n, coherent);
@@ -303,7 +313,7 @@ void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* fou
   }
 }
 
-void Scene::occluded_packet(const Ray* rays, int n, bool* occluded) const {
+void Scene::occluded8(const Ray* rays, int n, bool* occluded) const {
   TriangleId leaves[kPacketSize];
   for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
   LeavingContext c = leaving_context(leaves, n, false);

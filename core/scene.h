@@ -41,9 +41,10 @@ class Scene {
   bool intersect(const Ray& ray, SurfaceHit& hit, bool coherent = false) const;
   // True when anything blocks the ray within (t_min, t_max).
   bool occluded(const Ray& ray) const;
-  // The same queries for n <= kPacketSize rays at once (Embree's eight-wide packets): lane k
-  // gives what intersect / occluded give for rays[k]. Coherent rays (camera rays, shadow rays
-  // from neighbouring paths toward one light) are traced several times faster than one by one.
+  // The same queries for n rays at once, traced as Embree's eight-wide packets (kPacketSize rays
+  // each): entry k gives what intersect / occluded give for rays[k]. Coherent rays (camera rays,
+  // shadow rays from neighbouring paths toward one light) are traced several times faster than
+  // one by one.
   static constexpr int kPacketSize = kEmbreePacketSize;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent = false) const;
   void occluded_packet(const Ray* rays, int n, bool* occluded) const;
@@ -80,6 +81,9 @@ class Scene {
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   // Fills `hit` from Embree's answer for `ray`; false when the ray hit nothing.
   bool resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
+  // One packet of n <= kPacketSize rays.
+  void intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const;
+  void occluded8(const Ray* rays, int n, bool* occluded) const;
   void reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 

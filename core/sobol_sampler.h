@@ -69,7 +69,7 @@ class SobolSampler final : public Sampler {
   uint32_t reversed_index_ = 0;
   uint32_t dimension_ = 0;
   uint32_t cached_ = 0;
-  Seeds cache_[kCachedDimensions];
+  Seeds cache_[kCachedDimensions] = {};
 };
 
 }  // namespace prism

@@ -194,7 +194,12 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
 void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
                                RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
   constexpr int kLanes = Scene::kPacketSize;
-  n = std::clamp(n, 0, kLanes);
+  if (n > kLanes) {  // eight paths at a time
+    for (int first = 0; first < n; first += kLanes)
+      li_packet(scene, camera_rays + first, samplers + first, std::min(n - first, kLanes), counters,
+                aovs ? aovs + first : nullptr, out + first);
+    return;
+  }
   Path paths[kLanes];
   int live[kLanes];  // the paths still in flight, in lane order
   for (int k = 0; k < n; ++k) {

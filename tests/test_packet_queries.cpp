@@ -4,6 +4,8 @@
 // skip the triangle they leave.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "core/pcg32.h"
 #include "core/sobol_sampler.h"
 #include "integrators/path_integrator.h"
@@ -57,15 +59,17 @@ TEST(PacketQueries, AgreeWithSingleRaysLaneByLane) {
   Pcg32 rng(21, 22);
   int hits_compared = 0, spawned = 0, blocked = 0;
   for (int round = 0; round < 400; ++round) {
-    // Packets of every width, of camera-like rays from inside the box and the rays spawned from
-    // their hits (which skip the triangle they leave) and shadow rays between two hits.
-    const int n = 1 + round % Scene::kPacketSize;
-    Ray rays[Scene::kPacketSize], next[Scene::kPacketSize], shadow[Scene::kPacketSize];
+    // Packets of every width, and runs of rays longer than a packet (traced as several), of
+    // camera-like rays from inside the box and the rays spawned from their hits (which skip the
+    // triangle they leave) and shadow rays between two hits.
+    constexpr int kMaxRays = 2 * Scene::kPacketSize + 3;
+    const int n = 1 + round % kMaxRays;
+    Ray rays[kMaxRays], next[kMaxRays], shadow[kMaxRays];
     for (int k = 0; k < n; ++k)
       rays[k] = Ray{Vec3(3.6f * rng.next_float() - 1.8f, 3.6f * rng.next_float() - 1.8f, 1.9f),
                     sample_uniform_sphere({rng.next_float(), rng.next_float()})};
-    SurfaceHit hits[Scene::kPacketSize];
-    bool found[Scene::kPacketSize];
+    SurfaceHit hits[kMaxRays];
+    bool found[kMaxRays];
     scene.intersect_packet(rays, n, hits, found, round % 2 == 0);
     for (int k = 0; k < n; ++k) {
       SurfaceHit single;
@@ -80,8 +84,8 @@ TEST(PacketQueries, AgreeWithSingleRaysLaneByLane) {
       shadow[k] = spawn_ray_between(hits[k], Vec3(0, 1.9f, 0), Vec3(0.0f), Vec3(0, -1, 0));
       spawned += next[k].leaves.valid();
     }
-    SurfaceHit next_hits[Scene::kPacketSize];
-    bool next_found[Scene::kPacketSize], occluded[Scene::kPacketSize];
+    SurfaceHit next_hits[kMaxRays];
+    bool next_found[kMaxRays], occluded[kMaxRays];
     scene.intersect_packet(next, n, next_hits, next_found);
     scene.occluded_packet(shadow, n, occluded);
     for (int k = 0; k < n; ++k) {
@@ -112,14 +116,14 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   const PathIntegrator path(8, 3);
   Pcg32 rng(31, 32);
   RayCounters packed_counters, alone_counters;
+  constexpr int kMaxPaths = 2 * Scene::kPacketSize + 3;  // more than a packet: traced eight at a time
   for (int round = 0; round < 300; ++round) {
-    const int n = 1 + round % Scene::kPacketSize;
-    Ray rays[Scene::kPacketSize];
-    SobolSampler lane_samplers[Scene::kPacketSize] = {SobolSampler(5), SobolSampler(5), SobolSampler(5), SobolSampler(5),
-                                                      SobolSampler(5), SobolSampler(5), SobolSampler(5), SobolSampler(5)};
-    Sampler* samplers[Scene::kPacketSize];
-    AovSample aov[Scene::kPacketSize];
-    AovSample* aovs[Scene::kPacketSize];
+    const int n = 1 + round % kMaxPaths;
+    Ray rays[kMaxPaths];
+    std::vector<SobolSampler> lane_samplers(kMaxPaths, SobolSampler(5));
+    Sampler* samplers[kMaxPaths];
+    AovSample aov[kMaxPaths];
+    AovSample* aovs[kMaxPaths];
     for (int k = 0; k < n; ++k) {
       rays[k] = Ray{Vec3(3.6f * rng.next_float() - 1.8f, 3.6f * rng.next_float() - 1.8f, 1.9f),
                     sample_uniform_sphere({rng.next_float(), rng.next_float()})};
@@ -127,7 +131,7 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
       samplers[k] = &lane_samplers[k];
       aovs[k] = &aov[k];
     }
-    RadianceSample out[Scene::kPacketSize];
+    RadianceSample out[kMaxPaths];
     path.li_packet(scene, rays, samplers, n, packed_counters, aovs, out);
     for (int k = 0; k < n; ++k) {
       SobolSampler alone_sampler(5);

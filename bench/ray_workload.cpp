@@ -73,7 +73,6 @@ RayWorkload make_workload(const Scene& scene, const CameraDesc& cam_desc) {
   return w;
 }
 
-
 }  // namespace
 
 const BenchScene& bench_scene(const std::string& path) {
@@ -116,8 +115,7 @@ int raw_intersect8(RTCScene scene, const Ray* rays, bool coherent) {
   RTCIntersectContext context = context_for(coherent);
   alignas(32) RTCRayHit8 rh;
   alignas(32) int valid[kEmbreePacketSize];
-  fill_packet(rh.ray, valid, rays, kEmbreePacketSize);
-  for (int k = 0; k < kEmbreePacketSize; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  fill_packet(rh, valid, rays, kEmbreePacketSize);
   rtcIntersect8(valid, scene, &context, &rh);
   int hits = 0;
   for (int k = 0; k < kEmbreePacketSize; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;

@@ -1,4 +1,4 @@
-// prism's rays in Embree's layouts: one ray (RTCRayHit) and eight-wide packets (RTCRay8, RTCRayHit8's ray).
+// prism's rays in Embree's layouts: one ray (RTCRayHit) and eight-wide packets (RTCRay8, RTCRayHit8).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -46,6 +46,13 @@ void fill_packet(Packet& p, int (&valid)[kEmbreePacketSize], const Ray* rays, in
     p.id[k] = unsigned(k);
     p.flags[k] = 0;
   }
+}
+
+// The same for a packet with hits, each lane's hit cleared (no geometry, primitive or instance).
+inline void fill_packet(RTCRayHit8& p, int (&valid)[kEmbreePacketSize], const Ray* rays, int n) {
+  fill_packet(p.ray, valid, rays, n);
+  for (int k = 0; k < kEmbreePacketSize; ++k)
+    p.hit.geomID[k] = p.hit.primID[k] = p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
 }
 
 }  // namespace prism

@@ -21,10 +21,10 @@ class Integrator {
   // reports the path's first hit and its light split by kind (see AovSample).
   virtual RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
                             AovSample* aov = nullptr) const = 0;
-  // The same for n camera rays at once, lane k drawing from samplers[k] and
-  // reporting to aovs[k] (aovs null: no AOVs); out[k] is what li would return for lane k. The
-  // default traces the lanes one after another; integrators that trace them in lockstep share
-  // Embree's packet queries between them.
+  // The same for n camera rays at once, lane k drawing from samplers[k] and reporting to aovs[k]
+  // (aovs null: no AOVs); out[k] is what li would return for lane k. The default traces the lanes
+  // one after another; integrators that trace them in lockstep share Embree's packet queries
+  // between them.
   virtual void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
                          RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
     for (int k = 0; k < n; ++k)

@@ -239,7 +239,7 @@ namespace {
 // a packet; 0 for a single ray). Embree passes the context to the filter, so it must come first.
 struct LeavingContext {
   RTCIntersectContext context;
-  const TriangleId* leaves;
+  TriangleId leaves[kEmbreePacketSize];
 };
 
 // Embree's test sees a triangle through its float normal, which on a needle is off by up to
@@ -247,7 +247,7 @@ struct LeavingContext {
 // triangle's plane can appear on the wrong side of the offset origin, so the ray hits the face it
 // just left. No ray meets a plane twice, so such hits are dropped (Cycles skips its own primitive too).
 void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
-  const TriangleId* leaves = reinterpret_cast<const LeavingContext*>(args->context)->leaves;
+  const TriangleId* leaves = reinterpret_cast<const LeavingContext*>(args->context)->leaves;  // by ray id
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (!args->valid[i]) continue;
@@ -258,28 +258,30 @@ void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// `leaves` holds one entry per ray id; the filter runs only when some ray leaves a triangle.
-LeavingContext leaving_context(const TriangleId* leaves, int n, bool coherent) {
+// The context for n <= kEmbreePacketSize rays with ids 0..n-1; the filter runs only when some
+// ray leaves a triangle.
+LeavingContext leaving_context(const Ray* rays, int n, bool coherent) {
   LeavingContext c;
   rtcInitIntersectContext(&c.context);
   if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  c.leaves = leaves;
-  for (int k = 0; k < n; ++k)
-    if (leaves[k].valid()) c.context.filter = skip_left_triangle;
+  for (int k = 0; k < n; ++k) {
+    c.leaves[k] = rays[k].leaves;
+    if (c.leaves[k].valid()) c.context.filter = skip_left_triangle;
+  }
   return c;
 }
 
 }  // namespace
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
-  LeavingContext c = leaving_context(&ray.leaves, 1, coherent);
+  LeavingContext c = leaving_context(&ray, 1, coherent);
   RTCRayHit rh = to_embree(ray);
   rtcIntersect1(top_, &c.context, &rh);
   return resolve_hit(ray, rh, hit);
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  LeavingContext c = leaving_context(&ray.leaves, 1, false);
+  LeavingContext c = leaving_context(&ray, 1, false);
   RTCRay r = to_embree(ray).ray;
   rtcOccluded1(top_, &c.context, &r);
   return r.tfar < 0;  // Embree sets tfar to -inf on a hit
@@ -296,16 +298,10 @@ void Scene::occluded_packet(const Ray* rays, int n, bool* occluded) const {
 }
 
 void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
-  TriangleId leaves[kPacketSize];
-  for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
-  LeavingContext c = leaving_context(leaves, n, coherent);
+  LeavingContext c = leaving_context(rays, n, coherent);
   alignas(32) RTCRayHit8 rh;
   alignas(32) int valid[kPacketSize];
-  fill_packet(rh.ray, valid, rays, n);
-  for (int k = 0; k < kPacketSize; ++k) {
-    rh.hit.geomID[k] = rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-  }
+  fill_packet(rh, valid, rays, n);
   rtcIntersect8(valid, top_, &c.context, &rh);
   for (int k = 0; k < n; ++k) {
     const RTCRayHit one = rtcGetRayHitFromRayHitN(reinterpret_cast<RTCRayHitN*>(&rh), kPacketSize, unsigned(k));
@@ -314,9 +310,7 @@ void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bo
 }
 
 void Scene::occluded8(const Ray* rays, int n, bool* occluded) const {
-  TriangleId leaves[kPacketSize];
-  for (int k = 0; k < n; ++k) leaves[k] = rays[k].leaves;
-  LeavingContext c = leaving_context(leaves, n, false);
+  LeavingContext c = leaving_context(rays, n, false);
   alignas(32) RTCRay8 r;
   alignas(32) int valid[kPacketSize];
   fill_packet(r, valid, rays, n);

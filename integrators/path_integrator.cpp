@@ -27,6 +27,9 @@ struct PathIntegrator::Path {
   int diffuse_depth = 0;
   bool last_vertex = false;  // the diffuse-bounce limit is reached: only emission (MIS) is left
   float alpha = 0;
+
+  // The sum that light reaching the camera after `scatterings` scattering events belongs to.
+  Rgb& light_after(int scatterings) { return scatterings == 0 ? emitted : scatterings == 1 ? direct : indirect; }
 };
 
 // A shadow ray and the light it lets through to `target` (one of the path's sums) when unoccluded.
@@ -94,8 +97,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
       const float weight = path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w));
-      (depth == 0 ? path.emitted : depth == 1 ? path.direct : path.indirect) +=
-          beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
+      path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;
   }
@@ -117,7 +119,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (!is_black(Le)) {
       float w = 1.0f;
       if (!path.prev_delta) w = power_heuristic(path.prev_bsdf_pdf, emitters.pdf(hit.emitter, path.prev_p, hit.p, hit.ng));
-      (depth == 0 ? path.emitted : depth == 1 ? path.direct : path.indirect) += beta * Le * w;
+      path.light_after(depth) += beta * Le * w;
     }
   }
   if (depth >= max_depth_ || path.last_vertex) return false;
@@ -134,7 +136,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;
-      shadow.target = depth == 0 ? &path.direct : &path.indirect;
+      shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
     }
   }
 

@@ -298,6 +298,10 @@ void Scene::occluded_packet(const Ray* rays, int n, bool* occluded) const {
 }
 
 void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
+  if (n == 1) {  // a one-lane packet costs more than the one-ray query
+    found[0] = intersect(rays[0], hits[0], coherent);
+    return;
+  }
   LeavingContext c = leaving_context(rays, n, coherent);
   alignas(32) RTCRayHit8 rh;
   alignas(32) int valid[kPacketSize];
@@ -310,6 +314,10 @@ void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bo
 }
 
 void Scene::occluded8(const Ray* rays, int n, bool* occluded) const {
+  if (n == 1) {
+    occluded[0] = this->occluded(rays[0]);
+    return;
+  }
   LeavingContext c = leaving_context(rays, n, false);
   alignas(32) RTCRay8 r;
   alignas(32) int valid[kPacketSize];

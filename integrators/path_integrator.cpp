@@ -222,8 +222,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].depth == 0;  // lanes advance together: all or none are camera rays
-    if (m == 1) found[0] = scene.intersect(rays[0], hits[0], camera);
-    else scene.intersect_packet(rays, m, hits, found, camera);
+    scene.intersect_packet(rays, m, hits, found, camera);
 
     int s = 0, still = 0;
     for (int i = 0; i < m; ++i) {
@@ -235,8 +234,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       }
       if (goes_on) live[still++] = k;
     }
-    if (s == 1) blocked[0] = scene.occluded(shadow_rays[0]);
-    else if (s > 1) scene.occluded_packet(shadow_rays, s, blocked);
+    scene.occluded_packet(shadow_rays, s, blocked);
     for (int j = 0; j < s; ++j)
       if (!blocked[j]) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution;
     m = still;

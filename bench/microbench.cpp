@@ -92,6 +92,40 @@ void BM_BsdfSampleRoughGlass(benchmark::State& state) {
 }
 BENCHMARK(BM_BsdfSampleRoughGlass);
 
+// One bounce's BSDF work in the path tracer's pattern: build the BSDF for a new outgoing direction,
+// evaluate it and its pdf toward a light, then sample the next direction.
+void bsdf_bounce_benchmark(benchmark::State& state, const SurfaceParams& params, float eta) {
+  Pcg32 rng(3, 4);
+  const Vec3 n = normalize(Vec3(0.1f, 0.2f, 1.0f)), ng(0, 0, 1);
+  for (auto _ : state) {
+    const Vec3 wo = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f));
+    const Vec3 wl = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 0.5f));
+    const Bsdf bsdf(params, n, ng, wo, eta);
+    benchmark::DoNotOptimize(bsdf.eval(wl));
+    benchmark::DoNotOptimize(bsdf.pdf(wl));
+    benchmark::DoNotOptimize(bsdf.sample(rng.next_float(), {rng.next_float(), rng.next_float()}));
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+
+// The Cornell box's walls: metallic 0, roughness 1, ior 1 (no specular layer), i.e. Lambertian.
+void BM_BsdfBounceLambert(benchmark::State& state) {
+  SurfaceParams p;
+  p.base_color = Rgb(0.725f, 0.71f, 0.68f);
+  p.ior = 1.0f;
+  bsdf_bounce_benchmark(state, p, 1.0f);
+}
+BENCHMARK(BM_BsdfBounceLambert);
+
+// glTF's default dielectric: a GGX specular layer (ior 1.5) over the diffuse base.
+void BM_BsdfBounceRoughPlastic(benchmark::State& state) {
+  SurfaceParams p;
+  p.base_color = Rgb(0.5f);
+  p.roughness = 0.5f;
+  bsdf_bounce_benchmark(state, p, 1.5f);
+}
+BENCHMARK(BM_BsdfBounceRoughPlastic);
+
 void BM_EmitterSample(benchmark::State& state) {
   const Scene& scene = cornell_box();
   Pcg32 rng(5, 6);

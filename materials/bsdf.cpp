@@ -37,6 +37,15 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   if (wo_.z == 0) valid_ = false;
 
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
+  // No metal, no transmission, and a specular layer that reflects nothing (no index step, or no
+  // weight): the mixture is the Lambertian lobe alone, with weight and pick probability 1.
+  if (m == 0 && t == 0 && (eta == 1.0f || !(p.specular > 0))) {
+    lambertian_ = true;
+    weight_[kDiffuse] = pick_[kDiffuse] = 1;
+    only_lobe_ = kDiffuse;
+    if (wo_.z < 0) valid_ = false;  // only a volume boundary is seen from below
+    return;
+  }
   // glTF's fresnel_mix: the layer reflects F (per channel), the base below gets 1 - max(F).
   const Rgb F = m < 1 && t < 1 ? coat_.reflectance_rgb(wo_.z) : Rgb(0.0f);
   weight_[kMetal] = m;
@@ -122,6 +131,15 @@ float Bsdf::pdf(const Vec3& wi_world) const {
 
 std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
   if (!valid_) return std::nullopt;
+  if (lambertian_) {
+    const Vec3 wi = Lambertian::sample(u);
+    BsdfSample out;
+    out.wi = frame_.to_world(wi);
+    out.pdf = Lambertian::pdf(wi);
+    out.f_cos = diffuse_.f() * std::abs(wi.z);
+    if (!(out.pdf > 0) || !consistent(out.wi, wi) || is_black(out.f_cos)) return std::nullopt;
+    return out;
+  }
   // Pick a lobe, then rescale u_lobe to reuse it inside the lobe.
   int lobe = -1;
   float start = 0, cdf = 0;

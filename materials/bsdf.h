@@ -57,6 +57,7 @@ class Bsdf {
   DielectricBxdf dielectric_, coat_;
   Lambertian diffuse_;
   bool valid_ = true;
+  bool lambertian_ = false;  // the Lambertian lobe alone: sample() skips the mixture
   bool delta_only_ = false;
 };
 

@@ -104,6 +104,35 @@ TEST(Sampling, CosineHemisphereMatchesPdf) {
   EXPECT_LT(chi2(counts, expected), chi2_critical(nb * nb - 1));
 }
 
+TEST(Sampling, QuarterSinCosMatchesLibm) {
+  // Every float step over [-pi/4, pi/4] would be 2e8 cases; a dense grid plus the ends suffices
+  // for a polynomial: its error is smooth in a.
+  float worst = 0;
+  for (int i = -200000; i <= 200000; ++i) {
+    const float a = kPiOver4 * (float(i) / 200000.0f);
+    const SinCos sc = sin_cos_quarter(a);
+    worst = std::max({worst, std::abs(sc.sin - std::sin(a)), std::abs(sc.cos - std::cos(a))});
+  }
+  EXPECT_LE(worst, 2.0f * 0x1p-24f);  // two ulps of values below 1
+  EXPECT_EQ(sin_cos_quarter(0.0f).sin, 0.0f);
+  EXPECT_EQ(sin_cos_quarter(0.0f).cos, 1.0f);
+}
+
+TEST(Sampling, ConcentricDiskStaysInsideAndMatchesPolarForm) {
+  Pcg32 rng(11, 12);
+  for (int i = 0; i < 100000; ++i) {
+    const Vec2 u{rng.next_float(), rng.next_float()};
+    const Vec2 d = sample_uniform_disk_concentric(u);
+    // The textbook form with libm's sin and cos.
+    const float ox = 2 * u.x - 1, oy = 2 * u.y - 1;
+    const bool wide = std::abs(ox) > std::abs(oy);
+    const float r = wide ? ox : oy, theta = wide ? kPiOver4 * (oy / ox) : kPiOver2 - kPiOver4 * (ox / oy);
+    ASSERT_NEAR(d.x, r * std::cos(theta), 4e-7f) << u.x << " " << u.y;
+    ASSERT_NEAR(d.y, r * std::sin(theta), 4e-7f) << u.x << " " << u.y;
+    ASSERT_LE(d.x * d.x + d.y * d.y, 1.0f + 3e-7f);
+  }
+}
+
 TEST(Sampling, UniformConeMatchesPdf) {
   for (float omc_max : {1e-6f, 0.01f, 0.5f, 2.0f}) {  // from a tiny cone to the whole sphere
     Pcg32 rng(5, 6);

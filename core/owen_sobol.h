@@ -14,6 +14,16 @@ constexpr uint32_t reverse_bits(uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
+// Two 32-bit reversals in one: reverse_bits64((hi << 32) | lo) = (reverse_bits(lo) << 32) | reverse_bits(hi).
+constexpr uint64_t reverse_bits64(uint64_t x) {
+  x = ((x >> 1) & 0x5555555555555555ull) | ((x & 0x5555555555555555ull) << 1);
+  x = ((x >> 2) & 0x3333333333333333ull) | ((x & 0x3333333333333333ull) << 2);
+  x = ((x >> 4) & 0x0f0f0f0f0f0f0f0full) | ((x & 0x0f0f0f0f0f0f0f0full) << 4);
+  x = ((x >> 8) & 0x00ff00ff00ff00ffull) | ((x & 0x00ff00ff00ff00ffull) << 8);
+  x = ((x >> 16) & 0x0000ffff0000ffffull) | ((x & 0x0000ffff0000ffffull) << 16);
+  return (x >> 32) | (x << 32);
+}
+
 // A random bijection in which each output bit depends only on the input bits below it (Laine and
 // Karras 2011), with the stronger constants of N. Vegdahl, "Building a better LK hash" (2021).
 // XOR with a multiple by an even number, adding, and multiplying by an odd number each keep that

@@ -42,8 +42,10 @@ class SobolSampler final : public Sampler {
   Vec2 next_2d() override {
     const Seeds s = next_seeds();
     const uint32_t r = laine_karras_permutation(reversed_index_, s.index);
-    return {fraction_to_float(reverse_bits(laine_karras_permutation(reverse_bits(r), s.value0))),
-            fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dim1_reversed(r), s.value1)))};
+    const uint32_t x = laine_karras_permutation(reverse_bits(r), s.value0);
+    const uint32_t y = laine_karras_permutation(sobol_dim1_reversed(r), s.value1);
+    const uint64_t xy = reverse_bits64((uint64_t(y) << 32) | x);  // both reversed at once
+    return {fraction_to_float(uint32_t(xy >> 32)), fraction_to_float(uint32_t(xy))};
   }
 
  private:

@@ -31,6 +31,17 @@ TEST(Sobol, TablesMatchTheDirectionNumbers) {
   for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dim1(i) * 0x1p-32, expected[i]) << i;
 }
 
+TEST(Sobol, PairedReversalReversesEachHalf) {
+  Pcg32 rng(7, 8);
+  for (int i = 0; i < 10000; ++i) {
+    const uint32_t hi = rng.next_u32(), lo = rng.next_u32();
+    const uint64_t r = reverse_bits64((uint64_t(hi) << 32) | lo);
+    ASSERT_EQ(uint32_t(r >> 32), reverse_bits(lo)) << hi << " " << lo;
+    ASSERT_EQ(uint32_t(r), reverse_bits(hi)) << hi << " " << lo;
+  }
+  static_assert(reverse_bits64(1) == 0x8000000000000000ull);
+}
+
 TEST(Sobol, OwenScrambleKeepsDyadicIntervals) {
   // Values sharing their top k bits still share them after scrambling, and it is a bijection.
   Pcg32 rng(1, 9);

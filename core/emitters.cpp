@@ -66,6 +66,7 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
         e.instance = static_cast<int>(i);
         e.primitive = static_cast<int>(p);
         e.index = static_cast<uint32_t>(t);
+        e.material = prim.material;
         e.p0 = inst.object_to_world.point(prim.positions[prim.indices[3 * t]]);
         e.p1 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]);
         e.p2 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]]);
@@ -169,10 +170,12 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, Vec2 u) const {
   s.p_error = (abs(e.p0 * b0) + abs(e.p1 * b1) + abs(e.p2 * b2)) * kHitRelativeError;
   if (!(e.area > 0)) return s;
   s.n = e.normal;
+  s.material = e.material;
+  s.pdf = 1.0f;  // converted to solid angle by the caller
+  if (!e.textured) return s;
   const InstanceDesc& inst = desc_->instances[e.instance];
   const PrimitiveDesc& prim = desc_->meshes[inst.mesh].primitives[e.primitive];
-  s.material = prim.material;
-  if (e.textured && !prim.uvs.empty()) {
+  if (!prim.uvs.empty()) {
     // Barycentrics refer to the file's vertex order; undo the swap made for mirrored instances.
     const bool flipped = inst.object_to_world.flips_handedness();
     const Vec2& t0 = prim.uvs[prim.indices[3 * e.index]];
@@ -180,7 +183,6 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, Vec2 u) const {
     const Vec2& t2 = prim.uvs[prim.indices[3 * e.index + (flipped ? 1 : 2)]];
     s.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
   }
-  s.pdf = 1.0f;  // converted to solid angle by the caller
   return s;
 }
 

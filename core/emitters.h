@@ -60,6 +60,7 @@ class Emitters {
     int instance = -1;   // triangles: instance and primitive, to look up vertex attributes
     int primitive = -1;
     uint32_t index = 0;  // triangle within the primitive, or sphere index
+    int material = -1;
     Vec3 p0, p1, p2;     // triangles: world-space vertices, front face by winding x handedness
     Vec3 normal;         // triangles: unit front-face normal
     float area = 0;

@@ -13,6 +13,7 @@ class MediumStack {
  public:
   static constexpr int kMaxDepth = 8;
 
+  bool empty() const { return size_ == 0; }  // outside every volume: nothing absorbs
   // The innermost medium's index of refraction (1 outside every volume) and absorption.
   float ior() const { return size_ ? entries_[size_ - 1].ior : 1.0f; }
   Rgb sigma_a() const { return size_ ? entries_[size_ - 1].sigma_a : Rgb(0.0f); }

@@ -109,7 +109,8 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   // Beer-Lambert along the segment, measured between the surface points themselves: the spawned
   // origin sits off its surface by the hit's error bound, which far from the world origin is a
   // visible part of a thin slab's thickness.
-  beta *= beer_lambert(path.media.sigma_a(), depth == 0 ? hit.t * length(path.ray.dir) : length(hit.p - path.prev_p));
+  if (!path.media.empty())
+    beta *= beer_lambert(path.media.sigma_a(), depth == 0 ? hit.t * length(path.ray.dir) : length(hit.p - path.prev_p));
   const Vec3 wo = -normalize(path.ray.dir);
 
   // Emission reached by the previous bounce: weighted against next-event estimation by the

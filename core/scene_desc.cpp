@@ -5,7 +5,7 @@
 
 namespace prism {
 
-const MaterialDesc& SceneDesc::material(int m) const {
+const MaterialDesc& SceneDesc::default_material() {
   // glTF 2.0 §3.9.6: the default material is one with no properties specified, so every
   // property takes its schema default (MaterialDesc's initialisers).
   static const MaterialDesc kDefault = [] {
@@ -13,7 +13,7 @@ const MaterialDesc& SceneDesc::material(int m) const {
     d.name = "(default)";
     return d;
   }();
-  return m >= 0 && m < static_cast<int>(materials.size()) ? materials[m] : kDefault;
+  return kDefault;
 }
 
 SceneFeatures SceneDesc::features() const {

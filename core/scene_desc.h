@@ -183,8 +183,11 @@ struct SceneDesc {
   std::vector<PunctualLightDesc> lights;
   EnvironmentDesc environment;
 
-  // The material for index `m`, or the glTF default material for -1.
-  const MaterialDesc& material(int m) const;
+  // The material for index `m`, or the glTF default material for -1 (inline: every bounce asks).
+  const MaterialDesc& material(int m) const {
+    return m >= 0 && m < static_cast<int>(materials.size()) ? materials[m] : default_material();
+  }
+  static const MaterialDesc& default_material();
   SceneFeatures features() const;
   size_t triangle_count() const;  // over all instances
   int find_material(const std::string& name) const;  // -1 when absent

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
                   "no separate limit)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--rr-start-depth", render.settings.rr_start_depth,
-                  "Bounce from which Russian roulette may end paths (default 3; unbiased, trades noise for speed)")
+                  "Bounce from which Russian roulette may end paths (default 4; unbiased, trades noise for speed)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--clamp-indirect", render.settings.clamp_indirect,
                   "Clamp each sample's indirect light to this maximum (biased; removes fireflies; default 0 = off)")

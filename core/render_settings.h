@@ -16,7 +16,7 @@ struct RenderSettings {
   int max_depth = 8;           // bounces; 0 = emitted light seen directly only
   int max_diffuse_depth = -1;  // non-delta (diffuse and glossy) bounces; -1 = no limit of its own,
                                // 0 = direct light only on such surfaces (mirrors and glass go on)
-  int rr_start_depth = 3;      // Russian roulette from this bounce on
+  int rr_start_depth = 4;      // Russian roulette from this bounce on
   float clamp_indirect = 0;    // > 0: each sample's indirect light is scaled down to this maximum
                                // component (biased, removes fireflies); 0 = off
   std::string sampler = "sobol";

@@ -159,9 +159,12 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   path.depth = depth + 1;
 
   // Russian roulette on the throughput without the radiance scaling of refraction, so paths
-  // inside glass are not killed for having crossed into it; survivors are reweighted.
+  // inside glass are not killed for having crossed into it; survivors are reweighted. A path
+  // survives with probability sqrt(throughput), as in Cycles, not the throughput itself: in the
+  // closed, bright rooms of scenes/ the linear rule's extra variance outweighed the time it saved
+  // (docs/PERFORMANCE.md, "Russian roulette").
   if (depth + 1 >= rr_start_depth_) {
-    const float q = std::max(0.0f, 1.0f - max_component(beta) * path.eta_scale);
+    const float q = std::max(0.0f, 1.0f - std::sqrt(max_component(beta) * path.eta_scale));
     if (sampler.next_1d() < q) return false;
     beta /= 1.0f - q;
   }

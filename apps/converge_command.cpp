@@ -31,15 +31,17 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
-std::vector<int> spp_series(const std::string& text) {
+// A comma-separated list of positive counts, sorted, each once; `example` shows the form in errors.
+std::vector<int> count_list(const std::string& text, const std::string& option, const std::string& example) {
   std::vector<int> out;
   for (const std::string& item : split_list(text)) {
     char* end = nullptr;
     const long v = std::strtol(item.c_str(), &end, 10);
-    if (*end != '\0' || v < 1 || v > (1 << 30)) throw UsageError("--spp: expected a list of counts such as 1,4,16,64, got '" + text + "'");
+    if (*end != '\0' || v < 1 || v > (1 << 30))
+      throw UsageError(option + ": expected a list of counts such as " + example + ", got '" + text + "'");
     out.push_back(int(v));
   }
-  if (out.empty()) throw UsageError("--spp: the list is empty");
+  if (out.empty()) throw UsageError(option + ": the list is empty");
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
@@ -55,7 +57,11 @@ struct Row {
 };
 
 int converge(const ConvergeOptions& o) {
-  const std::vector<int> spps = spp_series(o.spp);
+  const std::vector<int> spps = count_list(o.spp, "--spp", "1,4,16,64");
+  // Russian roulette's start is compared besides sampler and integrator: it trades noise for time
+  // without bias, so only a measurement can choose it (docs/PERFORMANCE.md).
+  std::vector<int> rr_starts;  // empty: the render's own
+  if (o.rr_start_depths) rr_starts = count_list(*o.rr_start_depths, "--rr-start-depths", "3,4,5");
   const std::vector<std::string> samplers = split_list(o.samplers), integrators = split_list(o.integrators);
   if (samplers.empty() || integrators.empty()) throw UsageError("--samplers and --integrators need at least one name");
   if (!std::filesystem::is_directory(o.output_dir))
@@ -73,6 +79,7 @@ int converge(const ConvergeOptions& o) {
     if (!ro.resolution) ro.resolution = fmt::format("{}x{}", reference->width, reference->height);
   }
   PreparedRender p = prepare_render(ro);
+  if (rr_starts.empty()) rr_starts.push_back(p.settings.rr_start_depth);
   build_scene(p, ro.quiet);
   const Camera camera(p.camera, p.settings.width, p.settings.height);
   if (reference && (reference->width != p.settings.width || reference->height != p.settings.height))
@@ -101,44 +108,47 @@ int converge(const ConvergeOptions& o) {
                   "render time (s)", "relMSE", {}};
   if (!ro.quiet) fmt::print("{:<20}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
   for (const std::string& integrator_name : integrators)
-    for (const std::string& sampler : samplers) {
-      RenderSettings s = p.settings;
-      s.integrator = integrator_name;
-      s.sampler = sampler;
-      std::unique_ptr<Integrator> integrator;
-      try {
-        integrator = make_integrator(s);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-      }
-      {
-        // Warm up (thread pool, sampler validation) on one pixel so the first level's time is the render's.
-        RenderSettings warm = s;
-        warm.spp = 1;
-        Film pixel(1, 1);
+    for (const std::string& sampler : samplers)
+      for (const int rr_start : rr_starts) {
+        RenderSettings s = p.settings;
+        s.integrator = integrator_name;
+        s.sampler = sampler;
+        s.rr_start_depth = rr_start;
+        std::unique_ptr<Integrator> integrator;
         try {
-          render(*p.scene, camera, *integrator, warm, pixel);
+          integrator = make_integrator(s);
         } catch (const std::invalid_argument& e) {
           throw UsageError(e.what());
         }
+        {
+          // Warm up (thread pool, sampler validation) on one pixel so the first level's time is the render's.
+          RenderSettings warm = s;
+          warm.spp = 1;
+          Film pixel(1, 1);
+          try {
+            render(*p.scene, camera, *integrator, warm, pixel);
+          } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+          }
+        }
+        PlotSeries series{integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : ""),
+                          {}};
+        Film film(s.width, s.height);
+        double seconds = 0;
+        // Sample counts are prefixes of one sequence: each level continues the previous film.
+        for (int spp : spps) {
+          s.spp = spp;
+          seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+          Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
+          const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
+          if (!ro.quiet)
+            fmt::print("{:<20}{:>8}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
+                       row.error.all.rel_mse, efficiency);
+          series.points.emplace_back(seconds, row.error.all.rel_mse);
+          rows.push_back(row);
+        }
+        plot.series.push_back(std::move(series));
       }
-      PlotSeries series{integrator_name + "/" + sampler, {}};
-      Film film(s.width, s.height);
-      double seconds = 0;
-      // Sample counts are prefixes of one sequence: each level continues the previous film.
-      for (int spp : spps) {
-        s.spp = spp;
-        seconds += render(*p.scene, camera, *integrator, s, film).seconds;
-        Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
-        const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
-        if (!ro.quiet)
-          fmt::print("{:<20}{:>8}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
-                     row.error.all.rel_mse, efficiency);
-        series.points.emplace_back(seconds, row.error.all.rel_mse);
-        rows.push_back(row);
-      }
-      plot.series.push_back(std::move(series));
-    }
 
   std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
   for (const Row& r : rows)
@@ -169,6 +179,9 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--integrators", o.integrators, "Integrators to compare, comma-separated (default path)");
   cmd->add_option("--res", o.render.resolution, "Image size WIDTHxHEIGHT (default: the reference's, else as render)");
   cmd->add_option("--max-depth", o.render.settings.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rr-start-depths", o.rr_start_depths,
+                  "Bounces from which Russian roulette starts, a comma-separated list to compare (default 4; series "
+                  "are named INTEGRATOR/SAMPLER/rrN when there are several)");
   cmd->add_option("--camera", o.render.settings.camera, "Camera by name or index (default: the first)");
   cmd->add_option("--seed", o.render.settings.seed, "Random seed of the series (default 0)");
   cmd->add_option("--threads", o.render.settings.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);

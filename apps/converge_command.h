@@ -19,6 +19,7 @@ struct ConvergeOptions {
   std::string spp = "1,2,4,8,16,32,64,128,256";
   std::string samplers = "sobol,independent";
   std::string integrators = "path";
+  std::optional<std::string> rr_start_depths;  // a list to compare; the render default when absent
   std::string output_dir = ".";
 };
 

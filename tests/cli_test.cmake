@@ -160,6 +160,15 @@ run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.e
 run(2 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.exr" --res 8x8 -o "${WORK_DIR}/converge")
 expect_match("${last_err}" "is 16x16 but the render is 8x8" "unclear reference size message")
 run(2 "${PRISM}" converge "${box}" --spp 1,x -o "${WORK_DIR}/converge")
+# Russian roulette's start as a compared setting: one series per depth, named after it.
+run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.exr" --spp 2 --samplers sobol
+    --rr-start-depths 5,2 -o "${WORK_DIR}/converge" -q)
+file(STRINGS "${WORK_DIR}/converge/convergence.csv" rows)
+if(NOT rows MATCHES "path/sobol/rr2,2,.*path/sobol/rr5,2,")
+  message(FATAL_ERROR "converge --rr-start-depths rows: ${rows}")
+endif()
+run(2 "${PRISM}" converge "${box}" --rr-start-depths 0 -o "${WORK_DIR}/converge")
+expect_match("${last_err}" "--rr-start-depths: expected a list of counts" "unclear --rr-start-depths message")
 
 # bench: one line of figures per scene; a scene that fails is reported and fails the run.
 run(0 "${PRISM}" bench "${box}" --res 16x16 --spp 1)

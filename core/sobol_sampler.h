@@ -36,7 +36,7 @@ class SobolSampler final : public Sampler {
   float next_1d() override {
     const Seeds s = next_seeds();
     const uint32_t r = laine_karras_permutation(reversed_index_, s.index);
-    return fraction_to_float(reverse_bits(laine_karras_permutation(reverse_bits(r), s.value0)));
+    return fraction_to_float(owen_scramble(r, s.value0));
   }
 
   Vec2 next_2d() override {

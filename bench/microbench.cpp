@@ -136,6 +136,18 @@ void BM_EmitterSample(benchmark::State& state) {
 }
 BENCHMARK(BM_EmitterSample);
 
+// From the top of the left wall, 5 cm under the light's plane: the light's triangles are sampled
+// by solid angle there.
+void BM_EmitterSampleNearLight(benchmark::State& state) {
+  const Scene& scene = cornell_box();
+  Pcg32 rng(5, 6);
+  const Vec3 ref = Vec3(0.01f, 0.5f, 0.28f) - scene.origin();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(scene.emitters().sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()}));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_EmitterSampleNearLight);
+
 void BM_IntersectRandomRays(benchmark::State& state) {
   const Scene& scene = cornell_box();
   const std::vector<Ray> rays = random_rays(1 << 16);

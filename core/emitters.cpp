@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/constants.h"
 #include "core/face_normal.h"
@@ -25,6 +26,23 @@ float area_to_solid_angle(float pdf_area, const Vec3& ref, const Vec3& p, const 
   const float dist2 = length_squared(d);
   const float cos_p = std::abs(dot(n, d)) / std::sqrt(dist2);
   return cos_p > 0 ? pdf_area * dist2 / cos_p : 0.0f;
+}
+
+// A triangle is sampled uniformly in the solid angle it subtends (Arvo 1995) when ref is closer to
+// its plane than its longest edge, where the 1 / d^2 and cosine of area sampling vary most across
+// it (Cycles' rule). Farther, the two densities nearly agree and area sampling is cheaper. Solid
+// angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle) stay with
+// area sampling, as in pbrt-v4, where the spherical construction loses precision.
+constexpr float kMinSolidAngle = 3e-4f;
+constexpr float kMaxSolidAngle = 6.22f;
+
+std::optional<SphericalTriangle> solid_angle_sampled(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& normal,
+                                                     float longest_edge2, const Vec3& ref) {
+  const float plane_distance = dot(ref - p0, normal);
+  if (!(longest_edge2 > plane_distance * plane_distance)) return std::nullopt;
+  SphericalTriangle st(ref, p0, p1, p2);
+  if (!(st.solid_angle() >= kMinSolidAngle && st.solid_angle() <= kMaxSolidAngle)) return std::nullopt;
+  return st;
 }
 
 }  // namespace
@@ -74,7 +92,9 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
         const FaceNormal face = face_normal(e.p0, e.p1, e.p2);
         e.area = face.area;
         e.normal = face.normal;
+        e.longest_edge2 = std::max({length_squared(e.p1 - e.p0), length_squared(e.p2 - e.p1), length_squared(e.p0 - e.p2)});
         e.textured = mat.emissive_texture.present();
+        e.double_sided = mat.double_sided;
         emitters_.push_back(e);
         power.push_back(double(radiance) * e.area * kPi);
       }
@@ -141,10 +161,8 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
     return s;
   }
   const Emitter& e = emitters_[i];
-  EmitterSample s = e.sphere ? sample_sphere(e, ref, u) : sample_triangle(e, u);
+  EmitterSample s = e.sphere ? sample_sphere(e, ref, u) : sample_triangle(e, ref, u);
   s.emitter = static_cast<int>(i);
-  if (s.pdf <= 0) return s;
-  if (!e.sphere) s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
   s.pdf *= pick_.pmf(i);
   return s;
 }
@@ -153,25 +171,42 @@ float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) co
   if (index < 0 || index >= static_cast<int>(emitters_.size()) || pick_.size() == 0) return 0;
   const Emitter& e = emitters_[index];
   if (!(e.area > 0)) return 0;  // collinear corners: never sampled (1 / 0 x a pick of 0 is NaN)
-  float pdf;
-  if (e.sphere) {
-    pdf = sphere_pdf(e, ref, p, n);
-  } else {
-    pdf = area_to_solid_angle(1.0f / e.area, ref, p, n);
-  }
+  const float pdf = e.sphere ? sphere_pdf(e, ref, p, n) : triangle_pdf(e, ref, p, n);
   return pdf * pick_.pmf(index);
 }
 
-EmitterSample Emitters::sample_triangle(const Emitter& e, Vec2 u) const {
+// Whether ref sees the emitting side of triangle e: the back of a single-sided emitter sends
+// nothing (the test emitted_radiance makes), so no sample is spent there.
+bool Emitters::faces(const Emitter& e, const Vec3& ref) { return e.double_sided || dot(ref - e.p0, e.normal) > 0; }
+
+EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const {
+  if (!(e.area > 0) || !faces(e, ref)) return {};
+  if (const auto st = solid_angle_sampled(e.p0, e.p1, e.p2, e.normal, e.longest_edge2, ref)) {
+    const std::optional<Barycentrics> b = st->sample(u);
+    if (!b) return {};
+    EmitterSample s = triangle_point(e, *b);
+    s.pdf = 1.0f / st->solid_angle();
+    return s;
+  }
   const Vec2 b = sample_uniform_triangle(u);
-  const float b0 = b.x, b1 = b.y, b2 = 1.0f - b.x - b.y;
+  EmitterSample s = triangle_point(e, {b.x, b.y, 1.0f - b.x - b.y});
+  s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
+  return s;
+}
+
+float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {
+  if (!faces(e, ref)) return 0;
+  if (const auto st = solid_angle_sampled(e.p0, e.p1, e.p2, e.normal, e.longest_edge2, ref)) return 1.0f / st->solid_angle();
+  return area_to_solid_angle(1.0f / e.area, ref, p, n);
+}
+
+EmitterSample Emitters::triangle_point(const Emitter& e, const Barycentrics& b) const {
+  const float b0 = b.b0, b1 = b.b1, b2 = b.b2;
   EmitterSample s;
   s.p = e.p0 * b0 + e.p1 * b1 + e.p2 * b2;
   s.p_error = (abs(e.p0 * b0) + abs(e.p1 * b1) + abs(e.p2 * b2)) * kHitRelativeError;
-  if (!(e.area > 0)) return s;
   s.n = e.normal;
   s.material = e.material;
-  s.pdf = 1.0f;  // converted to solid angle by the caller
   if (!e.textured) return s;
   const InstanceDesc& inst = desc_->instances[e.instance];
   const PrimitiveDesc& prim = desc_->meshes[inst.mesh].primitives[e.primitive];

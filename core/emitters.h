@@ -8,6 +8,7 @@
 #include "core/distribution_1d.h"
 #include "core/environment_light.h"
 #include "core/scene_desc.h"
+#include "core/spherical_triangle.h"
 
 namespace prism {
 
@@ -64,10 +65,16 @@ class Emitters {
     Vec3 p0, p1, p2;     // triangles: world-space vertices, front face by winding x handedness
     Vec3 normal;         // triangles: unit front-face normal
     float area = 0;
+    float longest_edge2 = 0;  // triangles: squared length of the longest edge
     bool textured = false;  // the emission varies over the surface: uvs are needed
+    bool double_sided = false;  // triangles: emits from the back face too
   };
 
-  EmitterSample sample_triangle(const Emitter& e, Vec2 u) const;
+  // Triangles: by solid angle when that pays (see solid_angle_sampled), else by area.
+  EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
+  static bool faces(const Emitter& e, const Vec3& ref);
+  EmitterSample triangle_point(const Emitter& e, const Barycentrics& b) const;
+  float triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
   EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;
   float sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
 

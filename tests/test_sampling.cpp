@@ -1,7 +1,9 @@
 // Random numbers and warping functions: reference values, determinism, chi-square tests against pdfs.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/constants.h"
@@ -11,19 +13,15 @@
 #include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
+#include "core/spherical_triangle.h"
+#include "chi_square.h"
 #include "scene_builders.h"
 #include "statistics.h"
 
 namespace prism {
 namespace {
 
-// Chi-square critical value at significance 1e-5 (one-sided z = 4.265) for `dof` degrees of
-// freedom, by the Wilson-Hilferty approximation.
-double chi2_critical(int dof) {
-  const double z = 4.265, k = dof;
-  const double t = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
-  return k * t * t * t;
-}
+using test::chi2_critical;
 
 double chi2(const std::vector<double>& observed, const std::vector<double>& expected) {
   double x = 0;
@@ -151,6 +149,32 @@ TEST(Sampling, UniformConeMatchesPdf) {
   }
 }
 
+// Cutting a triangle into k^2 sub-triangles along lines of constant barycentrics, the index of the
+// one holding the point with coordinates x = b1, y = b2 (p = p0 + x (p1 - p0) + y (p2 - p0)).
+// Cells with i + j < k - 1 hold two sub-triangles; diagonal cells only the lower one.
+int sub_triangle_index(double x, double y, int k) {
+  const int i = std::clamp(static_cast<int>(x * k), 0, k - 1), j = std::clamp(static_cast<int>(y * k), 0, k - 1);
+  const bool upper = (x * k - i) + (y * k - j) >= 1.0;
+  int index = 0;
+  for (int r = 0; r < j; ++r) index += 2 * (k - r) - 1;
+  index += 2 * i + ((upper && i + j < k - 1) ? 1 : 0);
+  return std::min(index, k * k - 1);
+}
+
+// The corners (as (x, y) pairs in the same coordinates) of the sub-triangles, in index order.
+std::vector<std::array<Vec2, 3>> sub_triangles(int k) {
+  std::vector<std::array<Vec2, 3>> out;
+  const float h = 1.0f / k;
+  for (int j = 0; j < k; ++j) {
+    for (int i = 0; i + j < k; ++i) {
+      const float x = i * h, y = j * h;
+      out.push_back({Vec2{x, y}, Vec2{x + h, y}, Vec2{x, y + h}});
+      if (i + j < k - 1) out.push_back({Vec2{x + h, y}, Vec2{x + h, y + h}, Vec2{x, y + h}});
+    }
+  }
+  return out;
+}
+
 TEST(Sampling, UniformTriangleMatchesArea) {
   // The right triangle (0,0),(1,0),(0,1) cut into k^2 congruent sub-triangles of equal area.
   Pcg32 rng(8, 9);
@@ -161,13 +185,7 @@ TEST(Sampling, UniformTriangleMatchesArea) {
     const float x = b.y, y = 1.0f - b.x - b.y;  // point b0*(0,0) + b1*(1,0) + b2*(0,1)
     ASSERT_GE(x, 0.0f);
     ASSERT_GE(y, -1e-6f);
-    const int i = std::min(k - 1, static_cast<int>(x * k)), j = std::min(k - 1, static_cast<int>(y * k));
-    const bool upper = (x * k - i) + (y * k - j) >= 1.0f;
-    // Cells with i + j < k - 1 hold two sub-triangles; diagonal cells only the lower one.
-    int index = 0;
-    for (int r = 0; r < j; ++r) index += 2 * (k - r) - 1;
-    index += 2 * i + ((upper && i + j < k - 1) ? 1 : 0);
-    counts[std::min(index, k * k - 1)] += 1;
+    counts[size_t(sub_triangle_index(x, y, k))] += 1;
   }
   EXPECT_LT(chi2(counts, expected), chi2_critical(k * k - 1));
 }
@@ -225,26 +243,100 @@ double triangle_solid_angle(Vec3 a, Vec3 b, Vec3 c) {
   return 2.0 * std::atan2(num, den);
 }
 
+TEST(SphericalTriangle, SolidAngleMatchesClosedForms) {
+  // An octant: pi / 2 from the origin, either winding.
+  EXPECT_NEAR(SphericalTriangle(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)).solid_angle(), kPi / 2, 1e-6f);
+  EXPECT_NEAR(SphericalTriangle(Vec3(0.0f), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(0, 0, 1)).solid_angle(), kPi / 2, 1e-6f);
+  // A point just above the interior sees almost a hemisphere.
+  EXPECT_NEAR(SphericalTriangle(Vec3(0.2f, 0.2f, 1e-5f), Vec3(-1e3f, -1e3f, 0), Vec3(1e3f, -1e3f, 0), Vec3(0, 1e3f, 0))
+                  .solid_angle(),
+              kTwoPi, 1e-4f);
+  // Small and far: area x cos / d^2, to the precision of the corners (float can't cancel here).
+  const float d = 1e4f, side = 1e-2f;
+  const SphericalTriangle far(Vec3(0, 0, -d), Vec3(0, 0, 0), Vec3(side, 0, 0), Vec3(0, side, 0));
+  EXPECT_NEAR(far.solid_angle(), 0.5 * side * side / (double(d) * d), 1e-3 * 0.5 * side * side / (double(d) * d));
+  // In the triangle's plane: nothing.
+  EXPECT_EQ(SphericalTriangle(Vec3(2, 2, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)).solid_angle(), 0.0f);
+}
+
+TEST(SphericalTriangle, SamplesUniformlyInSolidAngle) {
+  // Each sub-triangle of a 6 x 6 cut must receive its share of the solid angle, computed on its own
+  // corners by the test's own formula. Near, far, grazing, from behind, and a sliver.
+  const Vec3 p0(0, 0, 0), p1(1, 0, 0), p2(0.3f, 1, 0);
+  struct Case {
+    Vec3 ref, q0, q1, q2;
+  };
+  const Case cases[] = {{Vec3(0.4f, 0.3f, 0.02f), p0, p1, p2}, {Vec3(0.2f, 0.1f, 1.0f), p0, p1, p2},
+                        {Vec3(2.5f, 2.0f, 0.15f), p0, p1, p2}, {Vec3(0.6f, -0.3f, -0.4f), p0, p1, p2},
+                        {Vec3(0.5f, 0.01f, 0.03f), p0, p1, Vec3(0.5f, 0.02f, 0)}};
+  const int k = 6, n = 200000;
+  const std::vector<std::array<Vec2, 3>> subs = sub_triangles(k);
+  for (const Case& c : cases) {
+    const SphericalTriangle st(c.ref, c.q0, c.q1, c.q2);
+    const Vec3 e1 = c.q1 - c.q0, e2 = c.q2 - c.q0;
+    auto corner = [&](Vec2 b) { return c.q0 + e1 * b.x + e2 * b.y - c.ref; };
+    const double total = triangle_solid_angle(c.q0 - c.ref, c.q1 - c.ref, c.q2 - c.ref);
+    ASSERT_NEAR(st.solid_angle(), total, 1e-5 * total);
+    std::vector<double> counts(subs.size(), 0), expected;
+    for (const auto& t : subs) expected.push_back(n * triangle_solid_angle(corner(t[0]), corner(t[1]), corner(t[2])) / total);
+    Pcg32 rng(11, 12);
+    for (int i = 0; i < n; ++i) {
+      const std::optional<Barycentrics> b = st.sample({rng.next_float(), rng.next_float()});
+      ASSERT_TRUE(b.has_value());
+      ASSERT_GE(b->b0, -1e-6f);
+      ASSERT_GE(b->b1, 0.0f);
+      ASSERT_GE(b->b2, 0.0f);
+      ASSERT_NEAR(b->b0 + b->b1 + b->b2, 1.0f, 1e-6f);
+      counts[size_t(sub_triangle_index(b->b1, b->b2, k))] += 1;
+    }
+    EXPECT_LT(chi2(counts, expected), chi2_critical(int(subs.size()) - 1)) << "ref " << c.ref.x << " " << c.ref.y << " " << c.ref.z;
+  }
+}
+
 TEST(Emitters, TrianglePdfIntegratesToSolidAngle) {
-  // E[1 / pdf] over emitter samples is the solid angle the emitter subtends.
+  // E[1 / pdf] over emitter samples is the solid angle the emitter subtends, whether a triangle
+  // is sampled by solid angle (near, and grazing) or by area (far), and pdf() agrees with sample().
   SceneDesc scene;
   const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f));
-  test::add_quad(scene, Vec3(-0.5f, -0.25f, 1.0f), Vec3(1.0f, 0, 0), Vec3(0, 0.5f, 0), light);
+  const Vec3 c(-0.5f, -0.25f, 1.0f), u(1.0f, 0, 0), v(0, 0.5f, 0);
+  test::add_quad(scene, c, v, u, light);  // front face (cross(v, u) = -z) toward the points below
   Emitters emitters(scene);
   ASSERT_EQ(emitters.size(), 2u);
-  const Vec3 ref(0.2f, 0.1f, 0.0f);
-  Pcg32 rng(4, 4);
-  test::RunningStats stats;
-  for (int i = 0; i < 200000; ++i) {
-    const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
-    ASSERT_GT(s.pdf, 0.0f);
-    ASSERT_NEAR(emitters.pdf(s.emitter, ref, s.p, s.n), s.pdf, 1e-4f * s.pdf);
-    stats.add(1.0 / s.pdf);
+  for (const Vec3 ref : {Vec3(0.2f, 0.1f, 0.0f), Vec3(0.2f, 0.1f, -2.0f), Vec3(3.0f, 0.1f, 0.95f)}) {
+    Pcg32 rng(4, 4);
+    test::RunningStats stats;
+    for (int i = 0; i < 200000; ++i) {
+      const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+      ASSERT_GT(s.pdf, 0.0f);
+      ASSERT_NEAR(s.p.z, 1.0f, 1e-6f);
+      ASSERT_NEAR(emitters.pdf(s.emitter, ref, s.p, s.n), s.pdf, 1e-4f * s.pdf);
+      stats.add(1.0 / s.pdf);
+    }
+    const double expected = triangle_solid_angle(c - ref, c + u - ref, c + u + v - ref) +
+                            triangle_solid_angle(c - ref, c + u + v - ref, c + v - ref);
+    EXPECT_NEAR(stats.mean(), expected, test::kSigmas * stats.standard_error() + 1e-6 * expected) << "ref z " << ref.z;
   }
-  const Vec3 c(-0.5f, -0.25f, 1.0f), u(1.0f, 0, 0), v(0, 0.5f, 0);
-  const double expected = triangle_solid_angle(c - ref, c + u - ref, c + u + v - ref) +
-                          triangle_solid_angle(c - ref, c + u + v - ref, c + v - ref);
-  EXPECT_NEAR(stats.mean(), expected, test::kSigmas * stats.standard_error() + 1e-6);
+}
+
+TEST(Emitters, BackOfSingleSidedTriangleSpendsNoSample) {
+  // Seen from behind, a single-sided emitter sends nothing: no sample, and a pdf of 0 to match.
+  // A double-sided one is sampled from both sides, by solid angle near it and by area far away.
+  for (const bool double_sided : {false, true}) {
+    SceneDesc scene;
+    const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f), double_sided);
+    test::add_quad(scene, Vec3(-0.5f, -0.25f, 1.0f), Vec3(0, 0.5f, 0), Vec3(1.0f, 0, 0), light);  // faces -z
+    Emitters emitters(scene);
+    for (const Vec3 ref : {Vec3(0.1f, 0.0f, 1.5f), Vec3(0.1f, 0.0f, 9.0f), Vec3(0.1f, 0.0f, 0.5f)}) {
+      const bool lit = double_sided || ref.z < 1.0f;
+      Pcg32 rng(3, 3);
+      for (int i = 0; i < 100; ++i) {
+        const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+        EXPECT_EQ(s.pdf > 0, lit) << "double-sided " << double_sided << ", ref z " << ref.z;
+        const Vec3 p(0.1f, 0.0f, 1.0f), n(0, 0, -1);
+        EXPECT_EQ(emitters.pdf(0, ref, p, n) > 0, lit);
+      }
+    }
+  }
 }
 
 TEST(Emitters, SphereConeSamplingIsUniformInSolidAngle) {

@@ -8,6 +8,7 @@ import base64
 import json
 import math
 import struct
+import sys
 from pathlib import Path
 
 MM = 0.001  # the published data is in millimetres
@@ -33,6 +34,12 @@ TINTED_GLASS = {
 LIGHT_RADIANCE = (17.0, 12.0, 4.0)  # W / (sr m^2) per channel
 
 BOX_CENTRE = (278.0, 274.4, 279.6)
+
+# `--large-light OUT` writes a variant whose light covers most of the ceiling (456 x 459 mm) at a
+# tenth of the radiance: the walls' tops then lie close to a big emitter, the case where sampling
+# a light by solid angle rather than by area pays (docs/PERFORMANCE.md, "Light sampling").
+LARGE_LIGHT = [[(506, 548.3, 50), (506, 548.3, 509), (50, 548.3, 509), (50, 548.3, 50)]]
+LARGE_LIGHT_SCALE = 0.1
 
 # Each surface: name, material, quads (4 corners each), and where its front faces point:
 # "in" = toward the box centre, "out" = away from the object's own centre, or a fixed vector.
@@ -88,7 +95,7 @@ def oriented(quad, facing, object_centre):
     return quad if dot(normal, want) > 0 else list(reversed(quad))
 
 
-def build(glass):
+def build(glass, large_light=False):
     blob = bytearray()
     buffer_views, accessors, meshes, nodes = [], [], [], []
     material_index = {name: i for i, name in enumerate(MATERIALS)}
@@ -101,6 +108,8 @@ def build(glass):
         return len(buffer_views) - 1
 
     for name, material, quads, facing in SURFACES:
+        if large_light and name == "light":
+            quads = LARGE_LIGHT
         corners = [p for q in quads for p in q]
         object_centre = centre(corners)
         positions, indices = [], []
@@ -136,7 +145,8 @@ def build(glass):
              "extensions": {"KHR_materials_ior": {"ior": 1.0}}}
         if name == "light":
             m["emissiveFactor"] = [c / peak for c in LIGHT_RADIANCE]
-            m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": peak}
+            strength = peak * (LARGE_LIGHT_SCALE if large_light else 1.0)
+            m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
         materials.append(m)
     extensions = ["KHR_materials_emissive_strength", "KHR_materials_ior"]
     if glass:
@@ -161,6 +171,10 @@ def build(glass):
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--large-light":
+        Path(sys.argv[2]).write_text(json.dumps(build(False, large_light=True), indent=1) + "\n")
+        print(f"wrote {sys.argv[2]} (the large-light variant)")
+        return
     here = Path(__file__).parent
     for glass, out in ((False, here / "cornell-box.gltf"), (True, here.parent / "cornell-glass" / "cornell-glass.gltf")):
         out.write_text(json.dumps(build(glass), indent=1) + "\n")

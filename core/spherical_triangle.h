@@ -1,0 +1,36 @@
+// SphericalTriangle: the solid angle a triangle subtends from a point, and directions sampled
+// uniformly within it (Arvo, "Stratified Sampling of Spherical Triangles", SIGGRAPH 1995).
+#pragma once
+
+#include <optional>
+
+#include "core/vec3.h"
+
+namespace prism {
+
+// Barycentric coordinates of a point on a triangle: p = b0 p0 + b1 p1 + b2 p2.
+struct Barycentrics {
+  float b0 = 0, b1 = 0, b2 = 0;
+};
+
+// The triangle (p0, p1, p2) projected onto the unit sphere around `ref`.
+class SphericalTriangle {
+ public:
+  SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2);
+
+  // Solid angle in steradians, in [0, 2 pi]; either winding.
+  float solid_angle() const { return solid_angle_; }
+
+  // The point where a direction drawn uniformly in the solid angle (pdf 1 / solid_angle())
+  // meets the triangle; nullopt when the triangle is degenerate seen from ref.
+  std::optional<Barycentrics> sample(Vec2 u) const;
+
+ private:
+  Vec3 a_, b_, c_;  // unit directions from ref to p0, p1 and p2
+  Vec3 e1_, e2_;    // edges p1 - p0 and p2 - p0
+  Vec3 o_;          // ref - p0
+  float det_ = 0;   // a . (b x c) of the unit directions
+  float solid_angle_ = 0;
+};
+
+}  // namespace prism

@@ -28,22 +28,10 @@ float area_to_solid_angle(float pdf_area, const Vec3& ref, const Vec3& p, const 
   return cos_p > 0 ? pdf_area * dist2 / cos_p : 0.0f;
 }
 
-// A triangle is sampled uniformly in the solid angle it subtends (Arvo 1995) when ref is closer to
-// its plane than its longest edge, where the 1 / d^2 and cosine of area sampling vary most across
-// it (Cycles' rule). Farther, the two densities nearly agree and area sampling is cheaper. Solid
-// angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle) stay with
-// area sampling, as in pbrt-v4, where the spherical construction loses precision.
+// Solid angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle) stay
+// with area sampling, as in pbrt-v4, where the spherical construction loses precision.
 constexpr float kMinSolidAngle = 3e-4f;
 constexpr float kMaxSolidAngle = 6.22f;
-
-std::optional<SphericalTriangle> solid_angle_sampled(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& normal,
-                                                     float longest_edge2, const Vec3& ref) {
-  const float plane_distance = dot(ref - p0, normal);
-  if (!(longest_edge2 > plane_distance * plane_distance)) return std::nullopt;
-  SphericalTriangle st(ref, p0, p1, p2);
-  if (!(st.solid_angle() >= kMinSolidAngle && st.solid_angle() <= kMaxSolidAngle)) return std::nullopt;
-  return st;
-}
 
 }  // namespace
 
@@ -175,13 +163,24 @@ float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) co
   return pdf * pick_.pmf(index);
 }
 
-// Whether ref sees the emitting side of triangle e: the back of a single-sided emitter sends
-// nothing (the test emitted_radiance makes), so no sample is spent there.
-bool Emitters::faces(const Emitter& e, const Vec3& ref) { return e.double_sided || dot(ref - e.p0, e.normal) > 0; }
+// The back of a single-sided emitter sends nothing (the test emitted_radiance makes): no sample is
+// spent there, and the pdf is 0 to match.
+bool Emitters::faces(const Emitter& e, float plane_distance) { return e.double_sided || plane_distance > 0; }
+
+// A triangle is sampled uniformly in the solid angle it subtends (Arvo 1995) when ref is closer to
+// its plane than its longest edge, where the 1 / d^2 and cosine of area sampling vary most across
+// it (Cycles' rule). Farther, the two densities nearly agree and area sampling is cheaper.
+std::optional<SphericalTriangle> Emitters::solid_angle_sampled(const Emitter& e, const Vec3& ref, float plane_distance) {
+  if (!(e.longest_edge2 > plane_distance * plane_distance)) return std::nullopt;
+  SphericalTriangle st(ref, e.p0, e.p1, e.p2);
+  if (!(st.solid_angle() >= kMinSolidAngle && st.solid_angle() <= kMaxSolidAngle)) return std::nullopt;
+  return st;
+}
 
 EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const {
-  if (!(e.area > 0) || !faces(e, ref)) return {};
-  if (const auto st = solid_angle_sampled(e.p0, e.p1, e.p2, e.normal, e.longest_edge2, ref)) {
+  const float plane_distance = dot(ref - e.p0, e.normal);
+  if (!(e.area > 0) || !faces(e, plane_distance)) return {};
+  if (const auto st = solid_angle_sampled(e, ref, plane_distance)) {
     const std::optional<Barycentrics> b = st->sample(u);
     if (!b) return {};
     EmitterSample s = triangle_point(e, *b);
@@ -195,8 +194,9 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 
 }
 
 float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {
-  if (!faces(e, ref)) return 0;
-  if (const auto st = solid_angle_sampled(e.p0, e.p1, e.p2, e.normal, e.longest_edge2, ref)) return 1.0f / st->solid_angle();
+  const float plane_distance = dot(ref - e.p0, e.normal);
+  if (!faces(e, plane_distance)) return 0;
+  if (const auto st = solid_angle_sampled(e, ref, plane_distance)) return 1.0f / st->solid_angle();
   return area_to_solid_angle(1.0f / e.area, ref, p, n);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/distribution_1d.h"
@@ -71,8 +72,10 @@ class Emitters {
   };
 
   // Triangles: by solid angle when that pays (see solid_angle_sampled), else by area.
+  // plane_distance is dot(ref - p0, normal): positive on the front side.
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
-  static bool faces(const Emitter& e, const Vec3& ref);
+  static bool faces(const Emitter& e, float plane_distance);
+  static std::optional<SphericalTriangle> solid_angle_sampled(const Emitter& e, const Vec3& ref, float plane_distance);
   EmitterSample triangle_point(const Emitter& e, const Barycentrics& b) const;
   float triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
   EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;

@@ -35,16 +35,23 @@ std::vector<Ray> random_rays(size_t n) {
 }
 
 // One path's worth of draws in the integrator's pattern: pixel jitter, then per bounce an emitter
-// pick, a point on it, a lobe, a direction and a roulette decision (four bounces).
+// pick, a point on it, a lobe, a direction and a roulette decision (four bounces), drawn one at a
+// time (range 0) or a vertex at once (range 1, as the path tracer does).
 template <typename SamplerType>
 void BM_SamplerPath(benchmark::State& state) {
   SamplerType s(7);
+  const bool by_vertex = state.range(0) != 0;
   uint64_t i = 0;
   for (auto _ : state) {
     s.start_pixel_sample(int((i >> 6) & 511), int((i >> 15) & 511), i & 63);
     auto add = [](Vec2 v) { return v.x + v.y; };
     float sum = add(s.next_2d());
     for (int bounce = 0; bounce < 4; ++bounce) {
+      if (by_vertex) {
+        const VertexSamples v = s.next_vertex();
+        sum += v.light_pick + add(v.light_point) + v.lobe + add(v.direction) + v.roulette;
+        continue;
+      }
       sum += s.next_1d();
       sum += add(s.next_2d());
       sum += s.next_1d();
@@ -56,8 +63,8 @@ void BM_SamplerPath(benchmark::State& state) {
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * 21);  // dimensions drawn
 }
-BENCHMARK(BM_SamplerPath<IndependentSampler>);
-BENCHMARK(BM_SamplerPath<SobolSampler>);
+BENCHMARK(BM_SamplerPath<IndependentSampler>)->Arg(0)->Arg(1);
+BENCHMARK(BM_SamplerPath<SobolSampler>)->Arg(0)->Arg(1);
 
 // The glTF BSDF for a given material, at a fixed shading frame and outgoing direction.
 void bsdf_sample_benchmark(benchmark::State& state, const SurfaceParams& params) {

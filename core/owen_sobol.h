@@ -4,15 +4,22 @@
 #include <array>
 #include <cstdint>
 
+#include "core/vec3.h"
+
 namespace prism {
 
-constexpr uint32_t reverse_bits(uint32_t x) {
+// The bit operations below are templates so that a vector of 32-bit lanes (GCC vector extensions,
+// core/owen_sobol_vertex.cpp) runs the very same code as a single uint32_t; always inlined, so the
+// lanes compile for the caller's instruction set.
+template <class U32>
+[[gnu::always_inline]] constexpr U32 reverse_bits_of(U32 x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
   x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
   return (x >> 16) | (x << 16);
 }
+constexpr uint32_t reverse_bits(uint32_t x) { return reverse_bits_of(x); }
 
 // Two 32-bit reversals in one: reverse_bits64((hi << 32) | lo) = (reverse_bits(lo) << 32) | reverse_bits(hi).
 constexpr uint64_t reverse_bits64(uint64_t x) {
@@ -28,7 +35,8 @@ constexpr uint64_t reverse_bits64(uint64_t x) {
 // Karras 2011), with the stronger constants of N. Vegdahl, "Building a better LK hash" (2021).
 // XOR with a multiple by an even number, adding, and multiplying by an odd number each keep that
 // property, so the composition is a hash-driven base-2 Owen scramble of the bit-reversed value.
-constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+template <class U32>
+[[gnu::always_inline]] constexpr U32 laine_karras_permutation_of(U32 x, U32 seed) {
   x ^= x * 0x3d20adeau;
   x += seed;
   x *= (seed >> 16) | 1u;
@@ -36,6 +44,7 @@ constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
   x ^= x * 0x53a22864u;
   return x;
 }
+constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) { return laine_karras_permutation_of(x, seed); }
 
 // Nested uniform (Owen) scrambling of a 32-bit binary fraction: bit k of the result is flipped by
 // a function of the bits above it, so every dyadic interval maps onto one of the same size.
@@ -87,5 +96,28 @@ constexpr uint32_t sobol_dim1(uint32_t index) {
 
 // A 32-bit binary fraction as a float in [0, 1): the top 24 bits, exactly representable.
 constexpr float fraction_to_float(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
+
+// The seeds of one dimension of a pixel's padded sequence: its index shuffle, and the value
+// scrambles of its first and (for a 2D draw) second coordinate.
+struct SobolSeeds {
+  uint32_t index, value0, value1;
+};
+
+// Point `reverse_bits(reversed_index)` of one dimension, shuffled and scrambled by its seeds.
+// The Owen scramble of a fraction v is reverse(LK(reverse(v))). With r = reverse(i) for the
+// shuffled index i, dimension 0 (the radical inverse, r itself) scrambles to reverse(LK(i)) and
+// dimension 1 to reverse(LK(reverse(sobol_dim1(i)))), which the tables give straight from r.
+inline float owen_sobol_1d(uint32_t reversed_index, const SobolSeeds& s) {
+  const uint32_t r = laine_karras_permutation(reversed_index, s.index);
+  return fraction_to_float(owen_scramble(r, s.value0));
+}
+
+inline Vec2 owen_sobol_2d(uint32_t reversed_index, const SobolSeeds& s) {
+  const uint32_t r = laine_karras_permutation(reversed_index, s.index);
+  const uint32_t x = laine_karras_permutation(reverse_bits(r), s.value0);
+  const uint32_t y = laine_karras_permutation(sobol_dim1_reversed(r), s.value1);
+  const uint64_t xy = reverse_bits64((uint64_t(y) << 32) | x);  // both reversed at once
+  return {fraction_to_float(uint32_t(xy >> 32)), fraction_to_float(uint32_t(xy))};
+}
 
 }  // namespace prism

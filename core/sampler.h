@@ -10,6 +10,15 @@
 
 namespace prism {
 
+// The draws a path tracer makes at each vertex of a path, in the order a sampler hands them out.
+struct VertexSamples {
+  float light_pick = 0;  // which light (1D)
+  Vec2 light_point;      // where on it (2D)
+  float lobe = 0;        // which BSDF lobe (1D)
+  Vec2 direction;        // the scattered direction (2D)
+  float roulette = 0;    // Russian roulette (1D)
+};
+
 class Sampler {
  public:
   virtual ~Sampler() = default;
@@ -19,6 +28,16 @@ class Sampler {
   virtual Vec2 next_2d() {
     const float a = next_1d();
     return {a, next_1d()};
+  }
+  // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give.
+  virtual VertexSamples next_vertex() {
+    VertexSamples v;
+    v.light_pick = next_1d();
+    v.light_point = next_2d();
+    v.lobe = next_1d();
+    v.direction = next_2d();
+    v.roulette = next_1d();
+    return v;
   }
 };
 

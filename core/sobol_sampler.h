@@ -6,6 +6,7 @@
 
 #include "core/hash.h"
 #include "core/owen_sobol.h"
+#include "core/owen_sobol_vertex.h"
 #include "core/sampler.h"
 
 namespace prism {
@@ -30,36 +31,23 @@ class SobolSampler final : public Sampler {
     dimension_ = 0;
   }
 
-  // The Owen scramble of a fraction v is reverse(LK(reverse(v))). With r = reverse(i) for the
-  // shuffled index i, dimension 0 (the radical inverse, r itself) scrambles to reverse(LK(i)) and
-  // dimension 1 to reverse(LK(reverse(sobol_dim1(i)))), which the tables give straight from r.
-  float next_1d() override {
-    const Seeds s = next_seeds();
-    const uint32_t r = laine_karras_permutation(reversed_index_, s.index);
-    return fraction_to_float(owen_scramble(r, s.value0));
-  }
-
-  Vec2 next_2d() override {
-    const Seeds s = next_seeds();
-    const uint32_t r = laine_karras_permutation(reversed_index_, s.index);
-    const uint32_t x = laine_karras_permutation(reverse_bits(r), s.value0);
-    const uint32_t y = laine_karras_permutation(sobol_dim1_reversed(r), s.value1);
-    const uint64_t xy = reverse_bits64((uint64_t(y) << 32) | x);  // both reversed at once
-    return {fraction_to_float(uint32_t(xy >> 32)), fraction_to_float(uint32_t(xy))};
+  float next_1d() override { return owen_sobol_1d(reversed_index_, next_seeds()); }
+  Vec2 next_2d() override { return owen_sobol_2d(reversed_index_, next_seeds()); }
+  VertexSamples next_vertex() override {
+    const SobolSeeds seeds[5] = {next_seeds(), next_seeds(), next_seeds(), next_seeds(), next_seeds()};  // in order
+    float u[7];
+    owen_sobol_vertex(reversed_index_, seeds, u);
+    return {u[0], {u[1], u[2]}, u[3], {u[4], u[5]}, u[6]};
   }
 
  private:
-  struct Seeds {
-    uint32_t index, value0, value1;
-  };
-
   // The seeds of a dimension depend on the pixel, not the sample index: consecutive samples of a
   // pixel reuse them from a small cache.
-  Seeds next_seeds() {
+  SobolSeeds next_seeds() {
     const uint32_t d = dimension_++;
     if (d < cached_) return cache_[d];
     const uint64_t h = hash_combine(pixel_hash_, d);
-    const Seeds s{uint32_t(h), uint32_t(h >> 32), uint32_t(mix64(h))};
+    const SobolSeeds s{uint32_t(h), uint32_t(h >> 32), uint32_t(mix64(h))};
     if (d == cached_ && d < kCachedDimensions) cache_[cached_++] = s;
     return s;
   }
@@ -71,7 +59,7 @@ class SobolSampler final : public Sampler {
   uint32_t reversed_index_ = 0;
   uint32_t dimension_ = 0;
   uint32_t cached_ = 0;
-  Seeds cache_[kCachedDimensions] = {};
+  SobolSeeds cache_[kCachedDimensions] = {};
 };
 
 }  // namespace prism

@@ -80,8 +80,11 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-// Each bounce draws, in order: emitter pick (1D), point on the emitter (2D), BSDF lobe (1D) and
-// direction (2D), then the Russian-roulette decision (1D) once it applies.
+// Each vertex that scatters draws, in order: emitter pick (1D), point on the emitter (2D), BSDF
+// lobe (1D) and direction (2D), and the Russian-roulette decision (1D), all five whether or not
+// it uses them (no light sampling at delta surfaces, no roulette before its start depth): a
+// dimension then means the same decision in every sample of a pixel, and stays stratified across
+// them (pbrt-v4 does the same).
 bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* found, ShadowQuery& shadow,
                              RayCounters& counters) const {
   const SceneDesc& desc = scene.desc();
@@ -125,15 +128,14 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   }
   if (depth >= max_depth_ || path.last_vertex) return false;
 
+  const VertexSamples u = sampler.next_vertex();
   const MaterialDesc& material = desc.material(hit.material);
   const bool from_front = dot(wo, hit.ng) > 0;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
   // Next-event estimation: one light chosen by power; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    const float u_pick = sampler.next_1d();
-    const Vec2 u_point = sampler.next_2d();
-    shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u_pick, u_point);
+    shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_pick, u.light_point);
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;
@@ -141,8 +143,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     }
   }
 
-  const float u_lobe = sampler.next_1d();
-  const auto bs = bsdf.sample(u_lobe, sampler.next_2d());
+  const auto bs = bsdf.sample(u.lobe, u.direction);
   if (!bs) return false;
   beta *= bs->f_cos / bs->pdf;
   path.prev_bsdf_pdf = bs->pdf;
@@ -165,7 +166,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   // (docs/PERFORMANCE.md, "Russian roulette").
   if (depth + 1 >= rr_start_depth_) {
     const float q = std::max(0.0f, 1.0f - std::sqrt(max_component(beta) * path.eta_scale));
-    if (sampler.next_1d() < q) return false;
+    if (u.roulette < q) return false;
     beta /= 1.0f - q;
   }
   ++counters.extension;

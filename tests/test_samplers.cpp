@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <set>
 
 #include "core/camera.h"
 #include "core/owen_sobol.h"
+#include "core/owen_sobol_vertex.h"
 #include "core/pcg32.h"
 #include "core/renderer.h"
 #include "core/sampler_factory.h"
@@ -110,6 +112,40 @@ TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
       same_as_other_seed += (d % 3 == 0 ? other_seed->next_2d().y : other_seed->next_1d()) == direct[size_t(d)];
     }
     EXPECT_LT(same_as_other_seed, 3) << name << ": another seed must give other numbers";
+  }
+}
+
+// A path vertex's five draws taken at once (eight lanes wide on AVX2 CPUs, for Sobol) are the
+// values the same draws give one at a time, bit for bit, across pixels, sample indices (up to the
+// top bit) and dimensions (past the seed cache's 64).
+TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
+  std::printf("owen_sobol_vertex: %s\n", owen_sobol_vertex_vectorized() ? "AVX2 lanes" : "scalar");
+  for (const std::string& name : sampler_names()) {
+    auto batched = make_sampler(name, 21), single = make_sampler(name, 21);
+    Pcg32 rng(8, 9);
+    for (int trial = 0; trial < 400; ++trial) {
+      const int x = int(rng.next_u32() % 64), y = int(rng.next_u32() % 64);
+      const uint64_t index = trial < 200 ? uint64_t(trial) : rng.next_u32();
+      batched->start_pixel_sample(x, y, index);
+      single->start_pixel_sample(x, y, index);
+      for (int vertex = 0; vertex < 18; ++vertex) {  // 90 dimensions
+        const VertexSamples v = batched->next_vertex();
+        const float light_pick = single->next_1d();
+        const Vec2 light_point = single->next_2d();
+        const float lobe = single->next_1d();
+        const Vec2 direction = single->next_2d();
+        const float roulette = single->next_1d();
+        ASSERT_EQ(v.light_pick, light_pick) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.light_point.x, light_point.x) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.light_point.y, light_point.y) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.lobe, lobe) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.direction.x, direction.x) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.direction.y, direction.y) << name << " trial " << trial << " vertex " << vertex;
+        ASSERT_EQ(v.roulette, roulette) << name << " trial " << trial << " vertex " << vertex;
+      }
+      // The draw after the vertices continues where they ended.
+      ASSERT_EQ(batched->next_1d(), single->next_1d()) << name << " trial " << trial;
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/embree_device.h"
 #include "core/embree_rays.h"
@@ -84,6 +85,17 @@ void Scene::bake_single_use_meshes() {
 }
 
 namespace {
+
+// A baked (world-space) primitive's unit face normals, exactly as reconstruct_triangle_hit would
+// compute them at each hit.
+std::vector<Vec3> face_normals(const PrimitiveDesc& prim) {
+  std::vector<Vec3> normals(prim.triangle_count());
+  for (size_t t = 0; t < normals.size(); ++t) {
+    const uint32_t* idx = &prim.indices[3 * t];
+    normals[t] = face_normal(prim.positions[idx[0]], prim.positions[idx[1]], prim.positions[idx[2]]).normal;
+  }
+  return normals;
+}
 
 // Embree triangle geometry over a primitive's own arrays (no copy).
 RTCGeometry triangle_geometry(RTCDevice device, PrimitiveDesc& prim) {
@@ -167,7 +179,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
   auto attach_top = [&](RTCGeometry geom, TopGeometry ref) {
     rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(top_geometries_.size()));
     rtcReleaseGeometry(geom);
-    top_geometries_.push_back(ref);
+    top_geometries_.push_back(std::move(ref));
   };
 
   mesh_scenes_.assign(desc_.meshes.size(), nullptr);
@@ -180,7 +192,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
         RTCGeometry geom = triangle_geometry(device, prims[p]);
         attach_alpha_filter(geom, inst.mesh, static_cast<int>(p));
         rtcCommitGeometry(geom);
-        attach_top(geom, {static_cast<int>(i), static_cast<int>(p)});
+        attach_top(geom, {static_cast<int>(i), static_cast<int>(p), face_normals(prims[p])});
       }
       continue;
     }
@@ -203,7 +215,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
     const std::array<float, 12> m = inst.object_to_world.matrix_float();
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
     rtcCommitGeometry(geom);
-    attach_top(geom, {static_cast<int>(i), -1});
+    attach_top(geom, {static_cast<int>(i), -1, {}});
   }
   if (!desc_.spheres.empty()) {
     sphere_geom_id_ = static_cast<unsigned>(top_geometries_.size());
@@ -331,17 +343,19 @@ bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) co
   hit.t = rh.ray.tfar;
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     // An instanced mesh: Embree's geomID is the primitive within the mesh.
-    reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), rh, hit);
+    reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), nullptr, rh,
+                             hit);
   } else if (rh.hit.geomID == sphere_geom_id_) {
     reconstruct_sphere_hit(ray, rh, hit);
   } else {
     const TopGeometry& g = top_geometries_[rh.hit.geomID];
-    reconstruct_triangle_hit(g.instance, g.primitive, rh, hit);
+    reconstruct_triangle_hit(g.instance, g.primitive, g.face_normals.data(), rh, hit);
   }
   return true;
 }
 
-void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const {
+void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* face_normals, const RTCRayHit& rh,
+                                     SurfaceHit& hit) const {
   const InstanceDesc& inst = desc_.instances[instance];
   const PrimitiveDesc& prim = desc_.meshes[inst.mesh].primitives[primitive];
   const Transform& xf = inst.object_to_world;
@@ -356,7 +370,8 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const RTCRayHi
   hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
 
   // glTF 2.0 §3.7.4: a negative determinant makes the front face clockwise.
-  const Vec3 ng = face_normal(p0, p1, p2).normal * (xf.flips_handedness() ? -1.0f : 1.0f);
+  const Vec3 ng = face_normals ? face_normals[rh.hit.primID]
+                               : face_normal(p0, p1, p2).normal * (xf.flips_handedness() ? -1.0f : 1.0f);
   if (ng != Vec3(0.0f)) {
     hit.ng = ng;
   } else {

@@ -63,6 +63,8 @@ class Scene {
   struct TopGeometry {
     int instance = -1;   // the placement (instances and baked meshes)
     int primitive = -1;  // baked meshes: the primitive; instances: -1 (Embree's geomID says)
+    // Baked meshes: each triangle's face_normal, computed once (double precision is dear per hit).
+    std::vector<Vec3> face_normals;
   };
 
   // What an alpha filter needs to know about the primitive it guards.
@@ -84,7 +86,9 @@ class Scene {
   // One packet of n <= kPacketSize rays.
   void intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const;
   void occluded8(const Ray* rays, int n, bool* occluded) const;
-  void reconstruct_triangle_hit(int instance, int primitive, const RTCRayHit& rh, SurfaceHit& hit) const;
+  // face_normals: the primitive's precomputed unit normals (world space), or null to compute them.
+  void reconstruct_triangle_hit(int instance, int primitive, const Vec3* face_normals, const RTCRayHit& rh,
+                                SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 
   SceneDesc desc_;

@@ -271,24 +271,39 @@ void skip_left_triangle(const RTCFilterFunctionNArguments* args) {
 }
 
 // The context for n <= kEmbreePacketSize rays with ids 0..n-1; the filter runs only when some
-// ray leaves a triangle.
-LeavingContext leaving_context(const Ray* rays, int n, bool coherent) {
+// ray leaves a triangle, and `filter` is set.
+LeavingContext leaving_context(const Ray* rays, int n, bool coherent, bool filter = true) {
   LeavingContext c;
   rtcInitIntersectContext(&c.context);
   if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   for (int k = 0; k < n; ++k) {
     c.leaves[k] = rays[k].leaves;
-    if (c.leaves[k].valid()) c.context.filter = skip_left_triangle;
+    if (c.leaves[k].valid() && filter) c.context.filter = skip_left_triangle;
   }
   return c;
 }
 
+// Whether Embree's closest hit is the triangle the ray leaves.
+bool hits_left_triangle(const RTCHit& hit, const TriangleId& left) {
+  return left.valid() && hit.primID == left.primitive && hit.geomID == left.geometry && hit.instID[0] == left.instance;
+}
+
 }  // namespace
 
-bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
-  LeavingContext c = leaving_context(&ray, 1, coherent);
+// Closest-hit queries run without skip_left_triangle: a call per candidate hit costs more than
+// tracing again, with the filter, the rare ray whose closest hit is the triangle it leaves. Its
+// other hits are the filtered query's (a ray meets the left triangle's plane once), so the answer
+// is the same. Occlusion queries report no hit to check, and keep the filter.
+RTCRayHit Scene::intersect_one(const Ray& ray, bool coherent, bool filter) const {
+  LeavingContext c = leaving_context(&ray, 1, coherent, filter);
   RTCRayHit rh = to_embree(ray);
   rtcIntersect1(top_, &c.context, &rh);
+  return rh;
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
+  RTCRayHit rh = intersect_one(ray, coherent, false);
+  if (hits_left_triangle(rh.hit, ray.leaves)) rh = intersect_one(ray, coherent, true);
   return resolve_hit(ray, rh, hit);
 }
 
@@ -314,14 +329,16 @@ void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bo
     found[0] = intersect(rays[0], hits[0], coherent);
     return;
   }
-  LeavingContext c = leaving_context(rays, n, coherent);
+  LeavingContext c = leaving_context(rays, n, coherent, false);  // see Scene::intersect
   alignas(32) RTCRayHit8 rh;
   alignas(32) int valid[kPacketSize];
   fill_packet(rh, valid, rays, n);
   rtcIntersect8(valid, top_, &c.context, &rh);
   for (int k = 0; k < n; ++k) {
     const RTCRayHit one = rtcGetRayHitFromRayHitN(reinterpret_cast<RTCRayHitN*>(&rh), kPacketSize, unsigned(k));
-    found[k] = resolve_hit(rays[k], one, hits[k]);
+    found[k] = hits_left_triangle(one.hit, rays[k].leaves)
+                   ? resolve_hit(rays[k], intersect_one(rays[k], coherent, true), hits[k])
+                   : resolve_hit(rays[k], one, hits[k]);
   }
 }
 

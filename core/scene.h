@@ -83,6 +83,8 @@ class Scene {
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   // Fills `hit` from Embree's answer for `ray`; false when the ray hit nothing.
   bool resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
+  // Embree's closest hit for one ray, with or without the filter that skips the triangle it leaves.
+  RTCRayHit intersect_one(const Ray& ray, bool coherent, bool filter) const;
   // One packet of n <= kPacketSize rays.
   void intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const;
   void occluded8(const Ray* rays, int n, bool* occluded) const;

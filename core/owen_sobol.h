@@ -9,17 +9,22 @@
 namespace prism {
 
 // The bit operations below are templates so that a vector of 32-bit lanes (GCC vector extensions,
-// core/owen_sobol_vertex.cpp) runs the very same code as a single uint32_t; always inlined, so the
-// lanes compile for the caller's instruction set.
+// core/owen_sobol_vertex.cpp) runs the very same code as a single uint32_t. They work in place,
+// through references, and are always inlined: a 32-byte vector passed by value to a function
+// built without AVX would change its ABI (an error in Clang), and inlined, the lanes compile for
+// the caller's instruction set.
 template <class U32>
-[[gnu::always_inline]] constexpr U32 reverse_bits_of(U32 x) {
+[[gnu::always_inline]] constexpr void reverse_bits_in_place(U32& x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
   x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  x = (x >> 16) | (x << 16);
 }
-constexpr uint32_t reverse_bits(uint32_t x) { return reverse_bits_of(x); }
+constexpr uint32_t reverse_bits(uint32_t x) {
+  reverse_bits_in_place(x);
+  return x;
+}
 
 // Two 32-bit reversals in one: reverse_bits64((hi << 32) | lo) = (reverse_bits(lo) << 32) | reverse_bits(hi).
 constexpr uint64_t reverse_bits64(uint64_t x) {
@@ -36,15 +41,17 @@ constexpr uint64_t reverse_bits64(uint64_t x) {
 // XOR with a multiple by an even number, adding, and multiplying by an odd number each keep that
 // property, so the composition is a hash-driven base-2 Owen scramble of the bit-reversed value.
 template <class U32>
-[[gnu::always_inline]] constexpr U32 laine_karras_permutation_of(U32 x, U32 seed) {
+[[gnu::always_inline]] constexpr void laine_karras_permute_in_place(U32& x, const U32& seed) {
   x ^= x * 0x3d20adeau;
   x += seed;
   x *= (seed >> 16) | 1u;
   x ^= x * 0x05526c56u;
   x ^= x * 0x53a22864u;
+}
+constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+  laine_karras_permute_in_place(x, seed);
   return x;
 }
-constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) { return laine_karras_permutation_of(x, seed); }
 
 // Nested uniform (Owen) scrambling of a 32-bit binary fraction: bit k of the result is flipped by
 // a function of the bits above it, so every dyadic interval maps onto one of the same size.

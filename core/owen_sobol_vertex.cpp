@@ -26,13 +26,16 @@ void vertex_scalar(uint32_t reversed_index, const SobolSeeds (&s)[5], float (&u)
 // same shuffled index, which the tables give from the first coordinate's shuffled index.
 __attribute__((target("avx2"))) void vertex_avx2(uint32_t reversed_index, const SobolSeeds (&s)[5], float (&u)[7]) {
   const U32x8 index_seeds = {s[0].index, s[1].index, s[2].index, s[3].index, s[4].index, s[1].index, s[3].index, 0u};
-  const U32x8 r = laine_karras_permutation_of(U32x8{} + reversed_index, index_seeds);
-  U32x8 v = reverse_bits_of(r);
-  v[5] = sobol_dim1_reversed(r[1]);
-  v[6] = sobol_dim1_reversed(r[3]);
+  U32x8 r = U32x8{} + reversed_index;
+  laine_karras_permute_in_place(r, index_seeds);
+  U32x8 w = r;
+  reverse_bits_in_place(w);
+  w[5] = sobol_dim1_reversed(r[1]);
+  w[6] = sobol_dim1_reversed(r[3]);
   const U32x8 value_seeds = {s[0].value0, s[1].value0, s[2].value0, s[3].value0,
                              s[4].value0, s[1].value1, s[3].value1, 0u};
-  const U32x8 w = reverse_bits_of(laine_karras_permutation_of(v, value_seeds));
+  laine_karras_permute_in_place(w, value_seeds);
+  reverse_bits_in_place(w);
   // fraction_to_float, lane by lane: the top 24 bits fit a signed lane exactly.
   const F32x8 f = __builtin_convertvector(reinterpret_cast<I32x8>(w >> 8), F32x8) * 0x1p-24f;
   u[0] = f[0];

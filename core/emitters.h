@@ -72,8 +72,8 @@ class Emitters {
   };
 
   // Triangles: by solid angle when that pays (see solid_angle_sampled), else by area.
-  // plane_distance is dot(ref - p0, normal): positive on the front side.
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
+  // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);
   static std::optional<SphericalTriangle> solid_angle_sampled(const Emitter& e, const Vec3& ref, float plane_distance);
   EmitterSample triangle_point(const Emitter& e, const Barycentrics& b) const;

@@ -9,22 +9,13 @@ typedef uint32_t U32x8 __attribute__((vector_size(32)));
 typedef int32_t I32x8 __attribute__((vector_size(32)));
 typedef float F32x8 __attribute__((vector_size(32)));
 
-void vertex_scalar(uint32_t reversed_index, const SobolSeeds (&s)[5], float (&u)[7]) {
-  u[0] = owen_sobol_1d(reversed_index, s[0]);
-  const Vec2 light_point = owen_sobol_2d(reversed_index, s[1]);
-  u[1] = light_point.x;
-  u[2] = light_point.y;
-  u[3] = owen_sobol_1d(reversed_index, s[2]);
-  const Vec2 direction = owen_sobol_2d(reversed_index, s[3]);
-  u[4] = direction.x;
-  u[5] = direction.y;
-  u[6] = owen_sobol_1d(reversed_index, s[4]);
-}
+}  // namespace
 
 // Lanes 0-4 hold the five draws' first coordinates, lanes 5 and 6 the second coordinates of the
 // two 2D draws, lane 7 is idle. A 2D draw's second coordinate scrambles Sobol's dimension 1 of the
 // same shuffled index, which the tables give from the first coordinate's shuffled index.
-__attribute__((target("avx2"))) void vertex_avx2(uint32_t reversed_index, const SobolSeeds (&s)[5], float (&u)[7]) {
+__attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, const SobolSeeds (&s)[5],
+                                                     float (&u)[7]) {
   const U32x8 index_seeds = {s[0].index, s[1].index, s[2].index, s[3].index, s[4].index, s[1].index, s[3].index, 0u};
   U32x8 r = U32x8{} + reversed_index;
   laine_karras_permute_in_place(r, index_seeds);
@@ -47,24 +38,12 @@ __attribute__((target("avx2"))) void vertex_avx2(uint32_t reversed_index, const 
   u[6] = f[4];
 }
 
-bool cpu_has_avx2() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-}
-
-}  // namespace
-
-bool owen_sobol_vertex_vectorized() {
-  static const bool avx2 = cpu_has_avx2();
+bool owen_sobol_vertex_available() {
+  static const bool avx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
   return avx2;
-}
-
-void owen_sobol_vertex(uint32_t reversed_index, const SobolSeeds (&seeds)[5], float (&u)[7]) {
-  if (owen_sobol_vertex_vectorized()) {
-    vertex_avx2(reversed_index, seeds, u);
-  } else {
-    vertex_scalar(reversed_index, seeds, u);
-  }
 }
 
 }  // namespace prism

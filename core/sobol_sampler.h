@@ -34,6 +34,7 @@ class SobolSampler final : public Sampler {
   float next_1d() override { return owen_sobol_1d(reversed_index_, next_seeds()); }
   Vec2 next_2d() override { return owen_sobol_2d(reversed_index_, next_seeds()); }
   VertexSamples next_vertex() override {
+    if (!owen_sobol_vertex_available()) return Sampler::next_vertex();  // one draw at a time
     const SobolSeeds seeds[5] = {next_seeds(), next_seeds(), next_seeds(), next_seeds(), next_seeds()};  // in order
     float u[7];
     owen_sobol_vertex(reversed_index_, seeds, u);

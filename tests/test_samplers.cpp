@@ -119,7 +119,7 @@ TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
 // values the same draws give one at a time, bit for bit, across pixels, sample indices (up to the
 // top bit) and dimensions (past the seed cache's 64).
 TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
-  std::printf("owen_sobol_vertex: %s\n", owen_sobol_vertex_vectorized() ? "AVX2 lanes" : "scalar");
+  std::printf("owen_sobol_vertex: %s\n", owen_sobol_vertex_available() ? "AVX2 lanes" : "one draw at a time");
   for (const std::string& name : sampler_names()) {
     auto batched = make_sampler(name, 21), single = make_sampler(name, 21);
     Pcg32 rng(8, 9);
@@ -130,18 +130,16 @@ TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
       single->start_pixel_sample(x, y, index);
       for (int vertex = 0; vertex < 18; ++vertex) {  // 90 dimensions
         const VertexSamples v = batched->next_vertex();
+        const float at_once[7] = {v.light_pick, v.light_point.x, v.light_point.y, v.lobe,
+                                  v.direction.x, v.direction.y,   v.roulette};
         const float light_pick = single->next_1d();
         const Vec2 light_point = single->next_2d();
         const float lobe = single->next_1d();
         const Vec2 direction = single->next_2d();
-        const float roulette = single->next_1d();
-        ASSERT_EQ(v.light_pick, light_pick) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.light_point.x, light_point.x) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.light_point.y, light_point.y) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.lobe, lobe) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.direction.x, direction.x) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.direction.y, direction.y) << name << " trial " << trial << " vertex " << vertex;
-        ASSERT_EQ(v.roulette, roulette) << name << " trial " << trial << " vertex " << vertex;
+        const float one_by_one[7] = {light_pick,  light_point.x, light_point.y, lobe,
+                                     direction.x, direction.y,   single->next_1d()};
+        for (int c = 0; c < 7; ++c)
+          ASSERT_EQ(at_once[c], one_by_one[c]) << name << " trial " << trial << " vertex " << vertex << " coordinate " << c;
       }
       // The draw after the vertices continues where they ended.
       ASSERT_EQ(batched->next_1d(), single->next_1d()) << name << " trial " << trial;

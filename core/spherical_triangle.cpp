@@ -19,16 +19,23 @@ SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3
   const Vec3 d0 = p0 - ref, d1 = p1 - ref, d2 = p2 - ref;
   const float l0 = length(d0), l1 = length(d1), l2 = length(d2);
   if (!(l0 > 0 && l1 > 0 && l2 > 0)) return;  // ref on a corner
-  e1_ = p1 - p0;
-  e2_ = p2 - p0;
-  o_ = ref - p0;
-  const float inv_l012 = 1.0f / (l0 * l1 * l2);
-  a_ = d0 * (l1 * l2 * inv_l012);
-  b_ = d1 * (l0 * l2 * inv_l012);
-  c_ = d2 * (l0 * l1 * inv_l012);
-  // The triple product of the corner vectors is d0 . (e1 x e2): no cancellation between the
-  // long vectors of a far, small triangle.
-  det_ = dot(d0, cross(e1_, e2_)) * inv_l012;
+  // Every vector is scaled by reciprocals of single distances, never of a product of them: the
+  // product of three distances overflows a float beyond ~1e12 and underflows below ~1e-12.
+  const float r0 = 1.0f / l0, r1 = 1.0f / l1, r2 = 1.0f / l2;
+  a_ = d0 * r0;
+  b_ = d1 * r1;
+  c_ = d2 * r2;
+  // The plane intersection in sample() is invariant to a common scale of its three vectors: scaled
+  // by the longest distance, they stay within [-2, 2].
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const float scale = 1.0f / std::max({l0, l1, l2});
+  e1_ = e1 * scale;
+  e2_ = e2 * scale;
+  o_ = (ref - p0) * scale;
+  // The triple product of the corner directions is d0 . (e1 x e2) / (l0 l1 l2): no cancellation
+  // between the long vectors of a far, small triangle. |e1| / l1 <= 1 + l0 / l1, so each factor
+  // stays in range unless the distances differ by ~1e19.
+  det_ = dot(a_, cross(e1 * r1, e2 * r2));
   // Van Oosterom and Strackee (IEEE TBME 1983): tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
   const float denominator = 1.0f + dot(a_, b_) + dot(b_, c_) + dot(c_, a_);
   solid_angle_ = 2.0f * std::atan2(std::abs(det_), denominator);

@@ -27,8 +27,8 @@ class SphericalTriangle {
 
  private:
   Vec3 a_, b_, c_;  // unit directions from ref to p0, p1 and p2
-  Vec3 e1_, e2_;    // edges p1 - p0 and p2 - p0
-  Vec3 o_;          // ref - p0
+  Vec3 e1_, e2_;    // edges p1 - p0 and p2 - p0, divided by ref's largest distance to a corner
+  Vec3 o_;          // ref - p0, divided likewise
   float det_ = 0;   // a . (b x c) of the unit directions
   float solid_angle_ = 0;
 };

@@ -1,5 +1,6 @@
 // Scale at the extremes: the same scenes scaled by 1e-4 to 1e6, and moved 1e5 from the origin,
-// give the same furnace radiance and slab transmittance, no shadow acne and no light leaks.
+// give the same furnace radiance and slab transmittance, no shadow acne and no light leaks; light
+// samples are the same from 1e-15 to 1e18.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/emitters.h"
+#include "core/pcg32.h"
 #include "core/render_origin.h"
 #include "core/renderer.h"
 #include "core/sampler.h"
@@ -164,6 +167,44 @@ TEST(ScaleExtremes, GlassSlabTransmitsTheSameAtEveryScale) {
           EXPECT_NEAR(L.radiance.x, expected, tolerance) << (integrator == &path ? "path" : "whitted") << ", scale "
                                                          << s << " offset " << offset.x << " kept " << keep_in_place;
         }
+      }
+    }
+  }
+}
+
+// Light sampling has no scale of its own: scaled with the scene, a triangle light's samples land
+// on the same points (in units of the scale) with the same solid-angle density, from 1e-15 to
+// 1e18, both where it is sampled by solid angle (near its plane) and by area (far). The spherical
+// construction once divided by the product of three distances, which overflows a float at ~1e12
+// and underflows at ~1e-12, so near lights silently fell back to the noisier area sampling there.
+TEST(ScaleExtremes, LightSamplesAreTheSameAtEveryScale) {
+  auto light_scene = [](float s) {
+    SceneDesc scene;
+    const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f));
+    test::add_quad(scene, Vec3(-0.5f, -0.25f, 1.0f) * s, Vec3(0, 0.5f, 0) * s, Vec3(1.0f, 0, 0) * s, light);  // faces -z
+    return scene;
+  };
+  const SceneDesc unit_scene = light_scene(1.0f);
+  const Emitters unit(unit_scene);
+  // Near: 0.05 under the light's plane, by solid angle; far: 3 under it, by area.
+  for (const Vec3 ref : {Vec3(0.2f, 0.1f, 0.95f), Vec3(0.2f, 0.1f, -2.0f)}) {
+    for (const float s : {1e-15f, 1e-9f, 1e-4f, 1e4f, 1e9f, 1e15f, 1e18f}) {
+      SCOPED_TRACE(::testing::Message() << "ref z " << ref.z << " scale " << s);
+      const SceneDesc scaled_scene = light_scene(s);
+      const Emitters scaled(scaled_scene);
+      Pcg32 rng(7, 8);
+      for (int i = 0; i < 256; ++i) {
+        const float u_pick = rng.next_float();
+        const Vec2 u{rng.next_float(), rng.next_float()};
+        const EmitterSample expected = unit.sample(ref, u_pick, u);
+        const EmitterSample got = scaled.sample(ref * s, u_pick, u);
+        ASSERT_GT(expected.pdf, 0.0f);
+        ASSERT_NEAR(got.pdf, expected.pdf, 1e-4f * expected.pdf) << "sample " << i;
+        const Vec3 p = got.p / s;
+        ASSERT_NEAR(p.x, expected.p.x, 1e-4f) << "sample " << i;
+        ASSERT_NEAR(p.y, expected.p.y, 1e-4f) << "sample " << i;
+        ASSERT_NEAR(p.z, expected.p.z, 1e-4f) << "sample " << i;
+        ASSERT_NEAR(scaled.pdf(got.emitter, ref * s, got.p, got.n), got.pdf, 1e-4f * got.pdf) << "sample " << i;
       }
     }
   }

@@ -63,8 +63,8 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     wi = to_light / dist;
     incident = emitted_radiance(desc, ls.material, ls.uv, ls.n, -wi);
   }
-  const Rgb f = bsdf.eval(wi);
-  if (is_black(incident) || is_black(f)) return q;
+  const Bsdf::Value f = bsdf.evaluate(wi);
+  if (is_black(incident) || is_black(f.f_cos)) return q;
   q.ray = ls.delta || ls.infinite ? spawn_ray_toward(hit, wi, dist) : spawn_ray_between(hit, ls.p, ls.p_error, ls.n);
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();
@@ -74,8 +74,8 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     sigma = beyond.sigma_a();
   }
   const Rgb tr = beer_lambert(sigma, dist);
-  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf.pdf(wi));
-  q.contribution = f * incident * tr * (weight / ls.pdf);
+  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, f.pdf);
+  q.contribution = f.f_cos * incident * tr * (weight / ls.pdf);
   q.cast = true;
   return q;
 }

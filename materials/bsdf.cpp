@@ -107,26 +107,20 @@ bool Bsdf::consistent(const Vec3& wi_world, const Vec3& wi_local) const {
   return geometric != 0 && shading != 0 && ((geometric > 0) == (shading > 0));
 }
 
-Rgb Bsdf::eval(const Vec3& wi_world) const {
+Bsdf::Value Bsdf::evaluate(const Vec3& wi_world) const {
   if (!valid_ || delta_only_) return {};
   const Vec3 wi = frame_.to_local(wi_world);
   if (!consistent(wi_world, wi)) return {};
-  if (only_lobe_ >= 0) return lobe_f(only_lobe_, wi) * (weight_[only_lobe_] * std::abs(wi.z));
-  Rgb f;
-  for (int k = 0; k < kLobes; ++k)
-    if (weight_[k] > 0 && !lobe_is_delta(k)) f += lobe_f(k, wi) * weight_[k];
-  return f * std::abs(wi.z);
-}
-
-float Bsdf::pdf(const Vec3& wi_world) const {
-  if (!valid_ || delta_only_) return 0;
-  const Vec3 wi = frame_.to_local(wi_world);
-  if (!consistent(wi_world, wi)) return 0;
-  if (only_lobe_ >= 0) return pick_[only_lobe_] * lobe_pdf(only_lobe_, wi);
-  float pdf = 0;
-  for (int k = 0; k < kLobes; ++k)
-    if (pick_[k] > 0 && !lobe_is_delta(k)) pdf += pick_[k] * lobe_pdf(k, wi);
-  return pdf;
+  if (only_lobe_ >= 0)
+    return {lobe_f(only_lobe_, wi) * (weight_[only_lobe_] * std::abs(wi.z)), pick_[only_lobe_] * lobe_pdf(only_lobe_, wi)};
+  Value v;
+  for (int k = 0; k < kLobes; ++k) {
+    if (lobe_is_delta(k)) continue;
+    if (weight_[k] > 0) v.f_cos += lobe_f(k, wi) * weight_[k];
+    if (pick_[k] > 0) v.pdf += pick_[k] * lobe_pdf(k, wi);
+  }
+  v.f_cos *= std::abs(wi.z);
+  return v;
 }
 
 std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
@@ -174,8 +168,9 @@ std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
     out.f_cos = s->f * (weight_[lobe] * std::abs(s->wi.z));
     out.pdf = pick_[lobe] * s->pdf;
   } else {
-    out.f_cos = eval(out.wi);
-    out.pdf = pdf(out.wi);
+    const Value v = evaluate(out.wi);
+    out.f_cos = v.f_cos;
+    out.pdf = v.pdf;
   }
   if (!(out.pdf > 0) || is_black(out.f_cos)) return std::nullopt;
   return out;

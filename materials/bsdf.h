@@ -32,8 +32,15 @@ class Bsdf {
   // are two-sided (mirrored to wo's side); volume boundaries are not.
   Bsdf(const SurfaceParams& params, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta);
 
-  Rgb eval(const Vec3& wi) const;  // f |cos theta_i|, non-delta lobes only
-  float pdf(const Vec3& wi) const;  // non-delta lobes only
+  // f |cos theta_i| and the density of sample() choosing wi, non-delta lobes only, from one change
+  // of frame: next-event estimation needs both.
+  struct Value {
+    Rgb f_cos;
+    float pdf = 0;
+  };
+  Value evaluate(const Vec3& wi) const;
+  Rgb eval(const Vec3& wi) const { return evaluate(wi).f_cos; }
+  float pdf(const Vec3& wi) const { return evaluate(wi).pdf; }
   std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
   // True when every lobe with weight is a delta lobe: next-event estimation cannot help.
   bool is_delta() const { return delta_only_; }

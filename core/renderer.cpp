@@ -51,6 +51,9 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     for (int k = 0; k < kLanes; ++k) samplers[k] = (lane_samplers[k] = make_sampler(settings.sampler, settings.seed)).get();
     RayCounters counters;
     uint64_t nonfinite = 0;
+    // Counted once per tile: shared counters updated per packet bounce their cache line between
+    // the cores.
+    uint64_t tile_samples = 0;
     AovSample aov[kLanes];  // filled only when the film has AOVs
     AovSample* aovs[kLanes];
     for (int k = 0; k < kLanes; ++k) aovs[k] = &aov[k];
@@ -77,8 +80,7 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
         }
         nonfinite += !finite;
       }
-      if (progress) progress->samples_done.fetch_add(uint64_t(lanes), std::memory_order_relaxed);
-      samples.fetch_add(uint64_t(lanes), std::memory_order_relaxed);
+      tile_samples += uint64_t(lanes);
       lanes = 0;
     };
     for (int y = y0; y < y1 && !stopping(); ++y) {
@@ -102,6 +104,8 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
       }
     }
     if (!stopping()) flush();
+    if (progress) progress->samples_done.fetch_add(tile_samples, std::memory_order_relaxed);
+    samples.fetch_add(tile_samples, std::memory_order_relaxed);
     std::lock_guard lock(stats_mutex);
     stats.rays += counters;
     stats.nonfinite_samples += nonfinite;

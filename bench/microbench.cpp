@@ -108,8 +108,7 @@ void bsdf_bounce_benchmark(benchmark::State& state, const SurfaceParams& params,
     const Vec3 wo = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f));
     const Vec3 wl = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 0.5f));
     const Bsdf bsdf(params, n, ng, wo, eta);
-    benchmark::DoNotOptimize(bsdf.eval(wl));
-    benchmark::DoNotOptimize(bsdf.pdf(wl));
+    benchmark::DoNotOptimize(bsdf.evaluate(wl));
     benchmark::DoNotOptimize(bsdf.sample(rng.next_float(), {rng.next_float(), rng.next_float()}));
   }
   state.SetItemsProcessed(int64_t(state.iterations()));

@@ -97,7 +97,7 @@ TEST(Glass, IndexOneIsInvisible) {
   RenderSettings settings;
   settings.width = settings.height = 24;
   settings.spp = 64;
-  settings.sampler = "independent";  // the F test models pixel errors as independent Monte Carlo noise
+  settings.sampler = "independent";  // the seed-swap test models pixel errors as independent noise
   const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
   // Two seeds of each scene: differences between seeds measure the noise pixel by pixel.
   std::vector<float> images[2][2];
@@ -110,17 +110,12 @@ TEST(Glass, IndexOneIsInvisible) {
       images[g][seed] = film.resolve_rgba();
     }
   }
-  // Under "invisible", with-vs-without differences are as large as seed-vs-seed ones: their ratio
-  // follows an F distribution with ~N degrees of freedom each, ln F ~ Normal(0, 4 / N).
-  double noise = 0, signal = 0;
-  size_t n = 0;
-  for (size_t i = 0; i < images[0][0].size(); i += 4, ++n) {
-    auto sq = [](double a, double b) { return (a - b) * (a - b); };
-    noise += sq(images[1][0][i], images[1][1][i]) + sq(images[0][0][i], images[0][1][i]);
-    signal += sq(images[1][0][i], images[0][1][i]) + sq(images[1][1][i], images[0][0][i]);
-  }
-  ASSERT_GT(noise, 0.0);
-  EXPECT_LT(signal / noise, std::exp(test::kSigmas * std::sqrt(4.0 / double(n))));
+  // Under "invisible", with-vs-without differences are as large as seed-vs-seed ones.
+  test::SeedSwapTest swap;
+  for (size_t i = 0; i < images[0][0].size(); i += 4)
+    swap.add(images[1][0][i], images[1][1][i], images[0][0][i], images[0][1][i]);
+  ASSERT_TRUE(swap.has_noise());
+  EXPECT_LT(std::log(swap.ratio()), test::kSigmas * swap.log_ratio_sigma());
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ TEST(Whitted, AgreesWithThePathTracerLitOnlyDirectly) {
   settings.height = 24;
   settings.max_depth = 12;
   settings.max_diffuse_depth = 0;  // Whitted lights diffuse surfaces directly only
-  // The F test below models pixel errors as independent Monte Carlo noise; stratified samplers
+  // The seed-swap test below models pixel errors as independent Monte Carlo noise; stratified samplers
   // leave a few large errors at edges and many tiny ones, which that model does not describe.
   settings.sampler = "independent";
   const Camera camera(cam, settings.width, settings.height);
@@ -112,21 +112,20 @@ TEST(Whitted, AgreesWithThePathTracerLitOnlyDirectly) {
     p[seed] = fp.resolve_rgba();
   }
   // As in Glass.IndexOneIsInvisible: differences between integrators must be no larger than
-  // differences between seeds (F ratio, ln F ~ Normal(0, 4 / N)).
-  double noise = 0, signal = 0, mean_w = 0, mean_p = 0;
+  // differences between seeds.
+  test::SeedSwapTest swap;
+  double mean_w = 0, mean_p = 0;
   size_t n = 0;
   for (size_t i = 0; i < w[0].size(); i += 4)
     for (int c = 0; c < 3; ++c, ++n) {
-      auto sq = [](double a, double b) { return (a - b) * (a - b); };
-      noise += sq(w[0][i + c], w[1][i + c]) + sq(p[0][i + c], p[1][i + c]);
-      signal += sq(w[0][i + c], p[1][i + c]) + sq(w[1][i + c], p[0][i + c]);
+      swap.add(w[0][i + c], w[1][i + c], p[0][i + c], p[1][i + c]);
       mean_w += w[0][i + c];
       mean_p += p[0][i + c];
     }
   ASSERT_GT(mean_w, 0.0);
-  EXPECT_LT(signal / noise, std::exp(test::kSigmas * std::sqrt(4.0 / double(n))))
-      << "image means: whitted " << mean_w / n << ", path " << mean_p / n;
-  // A bias of one sign over many pixels shows in the mean difference long before in the F ratio.
+  EXPECT_LT(std::log(swap.ratio()), test::kSigmas * swap.log_ratio_sigma())
+      << "image means: whitted " << mean_w / double(n) << ", path " << mean_p / double(n);
+  // A bias of one sign over many pixels shows in the mean difference long before in the ratio.
   for (int c = 0; c < 3; ++c) {
     test::RunningStats diff;
     for (size_t i = 0; i < w[0].size(); i += 4) diff.add(double(w[0][i + c]) - p[1][i + c]);

@@ -60,6 +60,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--sampler", render.settings.sampler,
                   "Sampler: sobol (default; Owen-scrambled Sobol, lower error) or independent (uniform random)");
+  cmd->add_option("--light-sampler", render.settings.light_sampler,
+                  "How next-event estimation picks a light: tree (default; by each light's importance at the shading "
+                  "point, from a light tree) or power (in proportion to emitted power, the same everywhere)");
   cmd->add_option("--res", render.resolution,
                   "Image size WIDTHxHEIGHT, e.g. 1280x720 (default: 512 high, width from the camera's aspect ratio)");
   cmd->add_option("--camera", render.settings.camera,

@@ -132,27 +132,27 @@ void BM_BsdfBounceRoughPlastic(benchmark::State& state) {
 }
 BENCHMARK(BM_BsdfBounceRoughPlastic);
 
-void BM_EmitterSample(benchmark::State& state) {
+// Next-event estimation's light choice and point from shading point ref (surface normal n); the
+// argument picks the light sampler (0 tree, 1 power).
+void emitter_sample_benchmark(benchmark::State& state, const Vec3& ref, const Vec3& n) {
   const Scene& scene = cornell_box();
+  const LightSampling how = state.range(0) == 0 ? LightSampling::Tree : LightSampling::Power;
   Pcg32 rng(5, 6);
-  const Vec3 ref(0.3f, 0.1f, 0.2f);
   for (auto _ : state)
-    benchmark::DoNotOptimize(scene.emitters().sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()}));
+    benchmark::DoNotOptimize(scene.emitters().sample(ref, n, rng.next_float(), {rng.next_float(), rng.next_float()}, how));
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
-BENCHMARK(BM_EmitterSample);
+
+// From the floor.
+void BM_EmitterSample(benchmark::State& state) { emitter_sample_benchmark(state, Vec3(0.3f, 0.1f, 0.2f), Vec3(0, 1, 0)); }
+BENCHMARK(BM_EmitterSample)->Arg(0)->Arg(1);
 
 // From the top of the left wall, 5 cm under the light's plane: the light's triangles are sampled
 // by solid angle there.
 void BM_EmitterSampleNearLight(benchmark::State& state) {
-  const Scene& scene = cornell_box();
-  Pcg32 rng(5, 6);
-  const Vec3 ref = Vec3(0.01f, 0.5f, 0.28f) - scene.origin();
-  for (auto _ : state)
-    benchmark::DoNotOptimize(scene.emitters().sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()}));
-  state.SetItemsProcessed(int64_t(state.iterations()));
+  emitter_sample_benchmark(state, Vec3(0.01f, 0.5f, 0.28f) - cornell_box().origin(), Vec3(1, 0, 0));
 }
-BENCHMARK(BM_EmitterSampleNearLight);
+BENCHMARK(BM_EmitterSampleNearLight)->Arg(0)->Arg(1);
 
 void BM_IntersectRandomRays(benchmark::State& state) {
   const Scene& scene = cornell_box();

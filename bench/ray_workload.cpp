@@ -66,7 +66,7 @@ RayWorkload make_workload(const Scene& scene, const CameraDesc& cam_desc) {
       const Frame frame = Frame::from_normal(n);
       w.bounce.push_back(spawn_ray(hit, frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}))));
       if (scene.emitters().empty()) continue;
-      const EmitterSample ls = scene.emitters().sample(hit.p, rng.next_float(), {rng.next_float(), rng.next_float()});
+      const EmitterSample ls = scene.emitters().sample(hit.p, n, rng.next_float(), {rng.next_float(), rng.next_float()});
       if (!(ls.pdf > 0) || ls.delta || ls.infinite) continue;
       w.shadow.push_back(spawn_ray_between(hit, ls.p, ls.p_error, ls.n));
     }

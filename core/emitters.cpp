@@ -111,11 +111,83 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
     power.push_back(double(kPi) * kPi * double(radius) * radius * environment_.mean_luminance());
   }
   pick_ = Distribution1D(power);
+  build_tree(desc, power);
 }
 
-float Emitters::environment_pdf(const Vec3& w) const {
+void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& power) {
+  std::vector<LightBounds> bounded(power.size());
+  std::vector<double> top_power(1, 0.0);
+  unbounded_.assign(1, -1);
+  top_slot_.assign(power.size(), -1);
+  for (size_t i = 0; i < power.size(); ++i) {
+    LightBounds& b = bounded[i];
+    if (i < emitters_.size() && !emitters_[i].sphere) {
+      const Emitter& e = emitters_[i];
+      b.box.extend(e.p0);
+      b.box.extend(e.p1);
+      b.box.extend(e.p2);
+      b.normals = {e.normal, 1.0f};
+      b.two_sided = e.double_sided;
+    } else if (i < emitters_.size()) {
+      const SphereDesc& sph = desc.spheres[emitters_[i].index];
+      b.box.extend(sph.center - Vec3(sph.radius));
+      b.box.extend(sph.center + Vec3(sph.radius));
+      b.normals = DirectionCone::every_direction();
+    } else if (static_cast<int>(i) != environment_index_ &&
+               desc.lights[i - emitters_.size()].type != LightType::Directional) {
+      const PunctualLightDesc& l = desc.lights[i - emitters_.size()];
+      b.box.extend(l.position);
+      b.normals = DirectionCone::every_direction();
+      if (l.type == LightType::Spot) {
+        // Full intensity inside the inner cone (theta_o), falling to nothing at the outer one
+        // (theta_o + theta_e), as pbrt-v4 bounds its spot lights.
+        const float inner = std::acos(std::clamp(l.cos_inner, -1.0f, 1.0f));
+        const float outer = std::acos(std::clamp(l.cos_outer, -1.0f, 1.0f));
+        b.normals = {l.direction, std::cos(std::min(inner, outer))};
+        b.cos_emit = std::cos(std::max(0.0f, outer - inner));
+      }
+    } else {
+      // At infinity: chosen beside the tree, by power.
+      top_slot_[i] = static_cast<int>(unbounded_.size());
+      unbounded_.push_back(static_cast<int>(i));
+      top_power.push_back(power[i]);
+      continue;
+    }
+    b.power = power[i] > 0 && std::isfinite(power[i]) ? power[i] : 0.0;
+  }
+  tree_ = LightTree(bounded);
+  top_power[0] = tree_.power();
+  top_ = Distribution1D(top_power);
+  // A tree that is one leaf (one light, or lights it cannot tell apart) chooses by power alone.
+  tree_pays_ = tree_.depth() > 0;
+}
+
+std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u, LightSampling how) const {
+  if (how == LightSampling::Power || !tree_pays_) {
+    if (pick_.size() == 0) return std::nullopt;
+    const size_t i = pick_.sample(u);
+    return Pick{i, pick_.pmf(i)};
+  }
+  if (top_.size() == 0) return std::nullopt;
+  float remapped = 0;
+  const size_t slot = top_.sample(u, &remapped);
+  if (slot > 0) return Pick{size_t(unbounded_[slot]), top_.pmf(slot)};
+  const std::optional<LightTree::Pick> leaf = tree_.sample(ref, ref_n, remapped);
+  if (!leaf) return std::nullopt;
+  return Pick{size_t(leaf->item), top_.pmf(0) * leaf->pmf};
+}
+
+float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n, LightSampling how) const {
+  if (index < 0 || size_t(index) >= top_slot_.size()) return 0;
+  if (how == LightSampling::Power || !tree_pays_) return pick_.pmf(size_t(index));
+  const int slot = top_slot_[size_t(index)];
+  if (slot > 0) return top_.pmf(size_t(slot));
+  return top_.pmf(0) * tree_.pmf(index, ref, ref_n);
+}
+
+float Emitters::environment_pdf(const Vec3& w, LightSampling how) const {
   if (environment_index_ < 0) return 0;
-  return pick_.pmf(size_t(environment_index_)) * environment_.pdf(w);
+  return pick_probability(environment_index_, Vec3(), Vec3(), how) * environment_.pdf(w);
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
@@ -123,16 +195,17 @@ int Emitters::triangle_base(int instance, int primitive) const {
   return prim_emitter_base_[instance_prim_base_[instance] + primitive];
 }
 
-EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
-  if (pick_.size() == 0) return {};
-  const size_t i = pick_.sample(u_pick);
+EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u, LightSampling how) const {
+  const std::optional<Pick> chosen = pick(ref, ref_n, u_pick, how);
+  if (!chosen) return {};
+  const size_t i = chosen->index;
   if (static_cast<int>(i) == environment_index_) {
     EmitterSample s;
     s.infinite = true;
     s.emitter = static_cast<int>(i);
     float pdf_dir = 0;
     s.wi = environment_.sample(u, pdf_dir);
-    s.pdf = pick_.pmf(i) * pdf_dir;
+    s.pdf = chosen->pmf * pdf_dir;
     s.distance = std::numeric_limits<float>::infinity();
     s.incident = environment_.radiance(s.wi);
     return s;
@@ -142,7 +215,7 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
     EmitterSample s;
     s.delta = true;
     s.emitter = static_cast<int>(i);
-    s.pdf = pick_.pmf(i);
+    s.pdf = chosen->pmf;
     s.wi = in.wi;
     s.distance = in.distance;
     s.incident = in.irradiance;
@@ -151,16 +224,18 @@ EmitterSample Emitters::sample(const Vec3& ref, float u_pick, Vec2 u) const {
   const Emitter& e = emitters_[i];
   EmitterSample s = e.sphere ? sample_sphere(e, ref, u) : sample_triangle(e, ref, u);
   s.emitter = static_cast<int>(i);
-  s.pdf *= pick_.pmf(i);
+  s.pdf *= chosen->pmf;
   return s;
 }
 
-float Emitters::pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const {
+float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n,
+                    LightSampling how) const {
   if (index < 0 || index >= static_cast<int>(emitters_.size()) || pick_.size() == 0) return 0;
   const Emitter& e = emitters_[index];
   if (!(e.area > 0)) return 0;  // collinear corners: never sampled (1 / 0 x a pick of 0 is NaN)
-  const float pdf = e.sphere ? sphere_pdf(e, ref, p, n) : triangle_pdf(e, ref, p, n);
-  return pdf * pick_.pmf(index);
+  const float pick_pmf = pick_probability(index, ref, ref_n, how);
+  if (!(pick_pmf > 0)) return 0;
+  return pick_pmf * (e.sphere ? sphere_pdf(e, ref, p, n) : triangle_pdf(e, ref, p, n));
 }
 
 // The back of a single-sided emitter sends nothing (the test emitted_radiance makes): no sample is

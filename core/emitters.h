@@ -1,5 +1,5 @@
-// Emitters: every light of a scene (emissive triangles and spheres as area lights, and punctual
-// lights), chosen in proportion to emitted power.
+// Emitters: every light of a scene (emissive triangles and spheres as area lights, punctual lights
+// and the environment), chosen by a light tree or in proportion to emitted power.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 
 #include "core/distribution_1d.h"
 #include "core/environment_light.h"
+#include "core/light_tree.h"
 #include "core/scene_desc.h"
 #include "core/spherical_triangle.h"
 
@@ -32,20 +33,28 @@ struct EmitterSample {
   Rgb incident;
 };
 
+// How next-event estimation chooses a light. Power: in proportion to emitted power, the same
+// everywhere. Tree: lights with a position go down a light tree by their importance at the shading
+// point (distance, orientation, the surface's normal); lights at infinity by power.
+enum class LightSampling { Power, Tree };
+
 class Emitters {
  public:
   Emitters() = default;
-  // Collects emitters from `desc`, which must outlive this object. Emitters are picked in
-  // proportion to their power: area x pi x the luminance of mean_emission (x2 if double-sided).
+  // Collects emitters from `desc`, which must outlive this object. An emitter's power is area x pi
+  // x the luminance of mean_emission (x2 if double-sided).
   explicit Emitters(const SceneDesc& desc);
 
   bool empty() const { return pick_.size() == 0; }
   size_t size() const { return emitters_.size(); }  // area emitters (triangles and spheres)
 
-  // Samples a point on an emitter for shading point `ref`; pdf 0 when nothing can be sampled.
-  EmitterSample sample(const Vec3& ref, float u_pick, Vec2 u) const;
+  // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
+  // (zero: none); pdf 0 when nothing can be sampled.
+  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u,
+                       LightSampling how = LightSampling::Tree) const;
   // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
-  float pdf(int index, const Vec3& ref, const Vec3& p, const Vec3& n) const;
+  float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n,
+            LightSampling how = LightSampling::Tree) const;
 
   // First emitter index of triangle primitive (instance, primitive) or -1: emitter = base + triangle.
   int triangle_base(int instance, int primitive) const;
@@ -53,8 +62,13 @@ class Emitters {
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
   const EnvironmentLight& environment() const { return environment_; }
   // Density of sample() choosing direction w toward the environment, including the choice.
-  float environment_pdf(const Vec3& w) const;
-  float pick_probability(int index) const { return pick_.pmf(index); }
+  float environment_pdf(const Vec3& w, LightSampling how = LightSampling::Tree) const;
+  // The probability of choosing light `index` (an emitter, then punctual lights, then the
+  // environment) from `ref`.
+  float pick_probability(int index, const Vec3& ref, const Vec3& ref_n, LightSampling how) const;
+  // The same by power alone, which does not depend on where the light is seen from.
+  float power_pick_probability(int index) const { return pick_.pmf(index); }
+  const LightTree& tree() const { return tree_; }
 
  private:
   struct Emitter {
@@ -81,9 +95,23 @@ class Emitters {
   EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;
   float sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
 
+  struct Pick {
+    size_t index = 0;
+    float pmf = 0;
+  };
+  void build_tree(const SceneDesc& desc, const std::vector<double>& power);
+  std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u, LightSampling how) const;
+
   const SceneDesc* desc_ = nullptr;
   std::vector<Emitter> emitters_;
   Distribution1D pick_;
+  // Tree sampling: first among the tree as a whole (slot 0, when it has lights) and the lights at
+  // infinity, by power; then down the tree. unbounded_[slot] is the light a slot stands for.
+  LightTree tree_;
+  Distribution1D top_;
+  std::vector<int> unbounded_;
+  std::vector<int> top_slot_;  // light -> its slot in top_, -1 for lights in the tree
+  bool tree_pays_ = false;     // the tree has more than one leaf
   std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;

@@ -20,6 +20,7 @@ struct RenderSettings {
   float clamp_indirect = 0;    // > 0: each sample's indirect light is scaled down to this maximum
                                // component (biased, removes fireflies); 0 = off
   std::string sampler = "sobol";
+  std::string light_sampler = "tree";  // how next-event estimation picks a light: tree or power
   // Budgets beyond a fixed spp, stopping at whichever is met first (0 = not set):
   double time_budget = 0;      // seconds of rendering: progressive passes until spent
   double noise_target = 0;     // relative standard error per pixel: adaptive sampling
@@ -45,7 +46,7 @@ struct RenderSettingsOverride {
   std::optional<float> clamp_indirect;
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
-  std::optional<std::string> camera, integrator, sampler;
+  std::optional<std::string> camera, integrator, sampler, light_sampler;
   std::optional<PixelWindow> crop;
   std::optional<uint64_t> first_sample;
   std::optional<AovSet> aovs;
@@ -63,6 +64,7 @@ struct RenderSettingsOverride {
     if (noise_target) s.noise_target = *noise_target;
     if (threads) s.threads = *threads;
     if (sampler) s.sampler = *sampler;
+    if (light_sampler) s.light_sampler = *light_sampler;
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;
     if (integrator) s.integrator = *integrator;

@@ -7,16 +7,33 @@
 
 namespace prism {
 
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
 std::vector<std::string> integrator_names() { return {"path", "whitted"}; }
+std::vector<std::string> light_sampler_names() { return {"tree", "power"}; }
+
+LightSampling light_sampling(const std::string& name) {
+  if (name == "tree") return LightSampling::Tree;
+  if (name == "power") return LightSampling::Power;
+  throw std::invalid_argument("unknown light sampler '" + name + "' (known: " + joined(light_sampler_names()) + ")");
+}
 
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings) {
+  const LightSampling lights = light_sampling(settings.light_sampler);  // checked for every integrator
   if (settings.integrator == "path")
     return std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth, settings.max_diffuse_depth,
-                                            settings.clamp_indirect);
+                                            settings.clamp_indirect, lights);
   if (settings.integrator == "whitted") return std::make_unique<WhittedIntegrator>(settings.max_depth);
-  std::string names;
-  for (const auto& n : integrator_names()) names += (names.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown integrator '" + settings.integrator + "' (known: " + names + ")");
+  throw std::invalid_argument("unknown integrator '" + settings.integrator + "' (known: " + joined(integrator_names()) +
+                              ")");
 }
 
 }  // namespace prism

@@ -22,6 +22,7 @@ struct PathIntegrator::Path {
   float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led to the current hit
   bool prev_delta = true;   // the camera ray counts as a delta event: no MIS for what it sees
   Vec3 prev_p;
+  Vec3 prev_n;  // the normal the previous vertex's BSDF took cosines about, for light-pick pmfs
   MediumStack media;
   int depth = 0;
   int diffuse_depth = 0;
@@ -48,7 +49,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                                                          bool from_front, float u_pick, Vec2 u_point) const {
   const SceneDesc& desc = scene.desc();
   ShadowQuery q;
-  const EmitterSample ls = scene.emitters().sample(hit.p, u_pick, u_point);
+  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_pick, u_point, light_sampling_);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -99,7 +100,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     const EnvironmentLight& env = emitters.environment();
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
-      const float weight = path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w));
+      const float weight = path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w, light_sampling_));
       path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;
@@ -122,7 +123,9 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     const Rgb Le = emitted_radiance(desc, hit.material, hit.uv, hit.ng, wo);
     if (!is_black(Le)) {
       float w = 1.0f;
-      if (!path.prev_delta) w = power_heuristic(path.prev_bsdf_pdf, emitters.pdf(hit.emitter, path.prev_p, hit.p, hit.ng));
+      if (!path.prev_delta)
+        w = power_heuristic(path.prev_bsdf_pdf,
+                            emitters.pdf(hit.emitter, path.prev_p, path.prev_n, hit.p, hit.ng, light_sampling_));
       path.light_after(depth) += beta * Le * w;
     }
   }
@@ -133,7 +136,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   const bool from_front = dot(wo, hit.ng) > 0;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
-  // Next-event estimation: one light chosen by power; a point on it for area lights.
+  // Next-event estimation: one light, chosen as light_sampling_ says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
     shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_pick, u.light_point);
     if (shadow.cast) {
@@ -152,6 +155,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   // direct lighting), then the path ends.
   if (!bs->delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
   path.prev_p = hit.p;
+  path.prev_n = bsdf.normal();
   if (bs->transmission) {
     path.media.cross(material, hit.material, from_front);
     if (material.has_volume()) path.eta_scale *= bs->eta * bs->eta;

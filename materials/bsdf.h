@@ -42,6 +42,8 @@ class Bsdf {
   Rgb eval(const Vec3& wi) const { return evaluate(wi).f_cos; }
   float pdf(const Vec3& wi) const { return evaluate(wi).pdf; }
   std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
+  // The unit normal the BSDF's cosines are taken about (the shading normal, perhaps bent toward wo).
+  const Vec3& normal() const { return frame_.n; }
   // True when every lobe with weight is a delta lobe: next-event estimation cannot help.
   bool is_delta() const { return delta_only_; }
 

@@ -177,7 +177,7 @@ TEST(SceneHits, EmissiveInstancesAreEmitters) {
   EXPECT_GE(a.emitter, 0);
   EXPECT_GE(b.emitter, 0);
   EXPECT_NE(a.emitter, b.emitter);
-  EXPECT_FLOAT_EQ(scene.emitters().pick_probability(a.emitter), 0.25f);
+  EXPECT_FLOAT_EQ(scene.emitters().power_pick_probability(a.emitter), 0.25f);
 }
 
 TEST(SceneValidation, RejectsOutOfRangeIndices) {

@@ -306,10 +306,10 @@ TEST(Emitters, TrianglePdfIntegratesToSolidAngle) {
     Pcg32 rng(4, 4);
     test::RunningStats stats;
     for (int i = 0; i < 200000; ++i) {
-      const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+      const EmitterSample s = emitters.sample(ref, Vec3(), rng.next_float(), {rng.next_float(), rng.next_float()});
       ASSERT_GT(s.pdf, 0.0f);
       ASSERT_NEAR(s.p.z, 1.0f, 1e-6f);
-      ASSERT_NEAR(emitters.pdf(s.emitter, ref, s.p, s.n), s.pdf, 1e-4f * s.pdf);
+      ASSERT_NEAR(emitters.pdf(s.emitter, ref, Vec3(), s.p, s.n), s.pdf, 1e-4f * s.pdf);
       stats.add(1.0 / s.pdf);
     }
     const double expected = triangle_solid_angle(c - ref, c + u - ref, c + u + v - ref) +
@@ -330,10 +330,10 @@ TEST(Emitters, BackOfSingleSidedTriangleSpendsNoSample) {
       const bool lit = double_sided || ref.z < 1.0f;
       Pcg32 rng(3, 3);
       for (int i = 0; i < 100; ++i) {
-        const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+        const EmitterSample s = emitters.sample(ref, Vec3(), rng.next_float(), {rng.next_float(), rng.next_float()});
         EXPECT_EQ(s.pdf > 0, lit) << "double-sided " << double_sided << ", ref z " << ref.z;
         const Vec3 p(0.1f, 0.0f, 1.0f), n(0, 0, -1);
-        EXPECT_EQ(emitters.pdf(0, ref, p, n) > 0, lit);
+        EXPECT_EQ(emitters.pdf(0, ref, Vec3(), p, n) > 0, lit);
       }
     }
   }
@@ -352,7 +352,7 @@ TEST(Emitters, SphereConeSamplingIsUniformInSolidAngle) {
     const int nb = 10, n = 100000;
     std::vector<double> counts(nb * nb, 0), expected(nb * nb, double(n) / (nb * nb));
     for (int i = 0; i < n; ++i) {
-      const EmitterSample s = emitters.sample(ref, rng.next_float(), {rng.next_float(), rng.next_float()});
+      const EmitterSample s = emitters.sample(ref, Vec3(), rng.next_float(), {rng.next_float(), rng.next_float()});
       ASSERT_NEAR(s.pdf, 1.0 / (2.0 * kPi * omc_max), 1e-3 / (2.0 * kPi * omc_max));
       // The point lies on the sphere, on the side that faces ref.
       ASSERT_NEAR(length(s.p - Vec3(0, 0, distance)), 1.0f, 1e-5f * distance);

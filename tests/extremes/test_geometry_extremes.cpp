@@ -82,11 +82,11 @@ TEST(GeometryExtremes, DegenerateTrianglesAreNeverHitNorLights) {
   const int base = emitters.triangle_base(degenerate, 0);
   ASSERT_GE(base, 0);
   for (int t = 0; t < 1500; ++t) {
-    EXPECT_EQ(emitters.pick_probability(base + t), 0.0f);
-    EXPECT_EQ(emitters.pdf(base + t, Vec3(0, 0, 5), aims[size_t(t)] - scene.origin(), Vec3(0, 0, 1)), 0.0f);
+    EXPECT_EQ(emitters.power_pick_probability(base + t), 0.0f);
+    EXPECT_EQ(emitters.pdf(base + t, Vec3(0, 0, 5), Vec3(), aims[size_t(t)] - scene.origin(), Vec3(0, 0, 1)), 0.0f);
   }
   // The quad's two triangles share all the power.
-  EXPECT_FLOAT_EQ(emitters.pick_probability(base + 1500) + emitters.pick_probability(base + 1501), 1.0f);
+  EXPECT_FLOAT_EQ(emitters.power_pick_probability(base + 1500) + emitters.power_pick_probability(base + 1501), 1.0f);
 }
 
 // The same, rendered: a sunlit plane with 750 bright degenerate triangles lying in it and 750

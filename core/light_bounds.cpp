@@ -1,0 +1,109 @@
+#include "core/light_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/constants.h"
+
+namespace prism {
+namespace {
+
+float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
+float safe_acos(float x) { return std::acos(std::clamp(x, -1.0f, 1.0f)); }
+
+// cos(max(0, a - b)) from the cosines and sines of a and b, both in [0, pi].
+float cos_minus_clamped(float cos_a, float sin_a, float cos_b, float sin_b) {
+  return cos_a >= cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
+}
+
+}  // namespace
+
+DirectionCone cone_union(const DirectionCone& a, const DirectionCone& b) {
+  if (a.cos_theta <= -1.0f || b.cos_theta <= -1.0f) return DirectionCone::every_direction();
+  const float theta_a = safe_acos(a.cos_theta), theta_b = safe_acos(b.cos_theta);
+  const float theta_d = safe_acos(dot(a.w, b.w));
+  if (std::min(theta_d + theta_b, kPi) <= theta_a) return a;
+  if (std::min(theta_d + theta_a, kPi) <= theta_b) return b;
+  // The union's half-angle spans both cones along the great circle through their axes; its axis
+  // is a.w turned toward b.w by theta_o - theta_a.
+  const float theta_o = 0.5f * (theta_a + theta_d + theta_b);
+  if (theta_o >= kPi) return DirectionCone::every_direction();
+  const Vec3 toward_b = b.w - a.w * dot(a.w, b.w);
+  const float len = length(toward_b);
+  if (!(len > 0)) return DirectionCone::every_direction();  // opposite axes
+  const float turn = theta_o - theta_a;
+  const Vec3 w = normalize(a.w * std::cos(turn) + toward_b * (std::sin(turn) / len));
+  return {w, std::cos(theta_o)};
+}
+
+LightBounds merge(const LightBounds& a, const LightBounds& b) {
+  if (!(a.power > 0)) return b;
+  if (!(b.power > 0)) return a;
+  LightBounds m;
+  m.box.lo = min(a.box.lo, b.box.lo);
+  m.box.hi = max(a.box.hi, b.box.hi);
+  m.normals = cone_union(a.normals, b.normals);
+  m.cos_emit = std::min(a.cos_emit, b.cos_emit);
+  m.power = a.power + b.power;
+  m.two_sided = a.two_sided || b.two_sided;
+  return m;
+}
+
+float orientation_measure(const LightBounds& b) {
+  const float theta_o = safe_acos(b.normals.cos_theta), theta_e = safe_acos(b.cos_emit);
+  const float theta_w = std::min(theta_o + theta_e, kPi);
+  const float sin_o = safe_sqrt(1.0f - b.normals.cos_theta * b.normals.cos_theta);
+  return kTwoPi * (1.0f - b.normals.cos_theta) +
+         kPiOver2 * (2.0f * theta_w * sin_o - std::cos(theta_o - 2.0f * theta_w) - 2.0f * theta_o * sin_o +
+                     b.normals.cos_theta);
+}
+
+LightImportance::LightImportance(const LightBounds& b, double power_scale)
+    : center_(b.box.center()),
+      radius_(0.5f * length(b.box.diagonal())),
+      axis_(b.normals.w),
+      cos_o_(b.normals.cos_theta),
+      sin_o_(safe_sqrt(1.0f - b.normals.cos_theta * b.normals.cos_theta)),
+      cos_emit_(b.cos_emit),
+      two_sided_(b.two_sided),
+      inv_radius2_(1.0f / std::max(radius_ * radius_, std::numeric_limits<float>::min())),
+      power_(b.power > 0 ? static_cast<float>(b.power * power_scale) : 0.0f) {}
+
+float LightImportance::operator()(const Vec3& p, const Vec3& n) const {
+  const Vec3 d = p - center_;
+  const float dist2 = length_squared(d);
+  const float inv_dist = dist2 > 0 ? 1.0f / std::sqrt(dist2) : 0.0f;
+  const Vec3 wi = dist2 > 0 ? d * inv_dist : Vec3(0, 0, 1);  // from the group toward p
+  // The box's bounding sphere seen from p subtends directions within theta_b of -wi; from inside
+  // it, every direction.
+  float cos_b = -1.0f, sin_b = 0.0f;
+  if (dist2 > radius_ * radius_) {
+    sin_b = radius_ * inv_dist;
+    cos_b = safe_sqrt(1.0f - sin_b * sin_b);
+  }
+
+  // theta' = theta_w - theta_o - theta_b: the smallest angle, from a normal of the group, at
+  // which any of its points can see p.
+  float cos_emission = 1.0f;
+  float cos_w = dot(axis_, wi);
+  if (two_sided_) cos_w = std::abs(cos_w);
+  if (cos_w < cos_o_) {
+    const float sin_w = safe_sqrt(1.0f - cos_w * cos_w);
+    const float cos_x = cos_w * cos_o_ + sin_w * sin_o_;  // theta_w - theta_o > 0 here
+    const float sin_x = sin_w * cos_o_ - cos_w * sin_o_;
+    cos_emission = cos_minus_clamped(cos_x, sin_x, cos_b, sin_b);
+    if (cos_emission < cos_emit_) return 0;
+  }
+  // The receiving cosine, bounded the same way; |cos| because a surface may transmit.
+  float cos_receive = 1.0f;
+  if (n.x != 0 || n.y != 0 || n.z != 0) {
+    const float cos_i = std::abs(dot(n, wi));
+    cos_receive = cos_minus_clamped(cos_i, safe_sqrt(1.0f - cos_i * cos_i), cos_b, sin_b);
+  }
+  // Closer than the bounding radius the inverse square means nothing: the group is all around.
+  const float inv_d2 = dist2 > 0 ? std::min(inv_dist * inv_dist, inv_radius2_) : inv_radius2_;
+  return power_ * std::max(0.0f, cos_emission) * cos_receive * inv_d2;
+}
+
+}  // namespace prism

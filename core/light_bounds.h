@@ -1,0 +1,63 @@
+// LightBounds: where a group of lights sits, which way it shines and how much it emits, to judge
+// from a shading point how much the group can matter (Conty Estevez & Kulla 2018, "Importance
+// Sampling of Many Lights with Adaptive Tree Splitting", sec. 4).
+#pragma once
+
+#include "core/scene_desc.h"
+#include "core/vec3.h"
+
+namespace prism {
+
+// The unit directions within angle theta of the unit axis w; cos_theta = -1 holds every direction.
+struct DirectionCone {
+  Vec3 w{0, 0, 1};
+  float cos_theta = 1;
+
+  static DirectionCone every_direction() { return {{0, 0, 1}, -1.0f}; }
+};
+
+// The smallest cone holding both (pbrt-v4 sec. 3.8.4 builds it the same way).
+DirectionCone cone_union(const DirectionCone& a, const DirectionCone& b);
+
+struct LightBounds {
+  Bounds3 box;              // where the emitting points are
+  DirectionCone normals;    // the emitting normals (theta_o); every direction for points and spheres
+  float cos_emit = 0;       // cos theta_e: how far past a normal light leaves (pi/2 for a surface)
+  double power = 0;         // luminance-weighted emitted power
+  bool two_sided = false;   // emits along -normal too
+
+};
+
+// LightBounds reduced to what judging it from a point needs, precomputed: a light tree's node.
+class LightImportance {
+ public:
+  LightImportance() = default;
+  // power_scale divides the power, to keep importance within float range (1 / the tree's total).
+  LightImportance(const LightBounds& b, double power_scale);
+
+  // An estimate of the light the group sends to point p whose surface has unit normal n (zero:
+  // no surface), from bounds on the emission and incidence angles over the whole group: power x
+  // cos(theta') x cos(theta_i') / d^2. It is 0 only where no point of the group can light p's
+  // surface (or where it is below float range, a 1e-38 share of a tree's light), so choosing
+  // groups in proportion to it misses nothing.
+  float operator()(const Vec3& p, const Vec3& n) const;
+  float power() const { return power_; }
+
+ private:
+  Vec3 center_;        // of the box
+  float radius_ = 0;   // of the box's bounding sphere
+  Vec3 axis_{0, 0, 1};
+  float cos_o_ = 1, sin_o_ = 0;  // the normals' cone
+  float cos_emit_ = 0;
+  bool two_sided_ = false;
+  float inv_radius2_ = 0;  // 1 / max(radius^2, FLT_MIN): the inverse square's cap
+  float power_ = 0;        // scaled by power_scale
+};
+
+LightBounds merge(const LightBounds& a, const LightBounds& b);
+
+// The orientation measure M_Omega of Conty Estevez & Kulla (eq. 1): the solid angle the group's
+// emission spreads over, cosine-weighted past theta_o; pi for a one-sided planar emitter.
+float orientation_measure(const LightBounds& b);
+
+}  // namespace prism

@@ -1,0 +1,227 @@
+// Light tree: its picks are a probability distribution that matches its pmf, it never misses a
+// light that can reach the shading point, and it holds up on degenerate sets of lights.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "chi_square.h"
+#include "core/constants.h"
+#include "core/emitters.h"
+#include "core/light_tree.h"
+#include "core/pcg32.h"
+#include "core/sampling.h"
+#include "scene_builders.h"
+
+namespace prism {
+namespace {
+
+Vec3 random_in_box(Pcg32& rng, float half) {
+  return {(2 * rng.next_float() - 1) * half, (2 * rng.next_float() - 1) * half, (2 * rng.next_float() - 1) * half};
+}
+
+Vec3 random_direction(Pcg32& rng) { return sample_uniform_sphere({rng.next_float(), rng.next_float()}); }
+
+// Triangles of every orientation, points, spots and spheres, with powers over six decades.
+std::vector<LightBounds> mixed_lights(Pcg32& rng, int count) {
+  std::vector<LightBounds> lights(static_cast<size_t>(count));
+  for (LightBounds& b : lights) {
+    const Vec3 c = random_in_box(rng, 5.0f);
+    b.power = std::pow(10.0, 6.0 * rng.next_float() - 3.0);
+    switch (int(rng.next_float() * 4)) {
+      case 0:  // a point
+        b.box.extend(c);
+        b.normals = DirectionCone::every_direction();
+        break;
+      case 1:  // a spot
+        b.box.extend(c);
+        b.normals = {random_direction(rng), std::cos(0.8f * rng.next_float())};
+        b.cos_emit = std::cos(0.5f * rng.next_float());
+        break;
+      case 2:  // a sphere
+        b.box.extend(c - Vec3(0.3f));
+        b.box.extend(c + Vec3(0.3f));
+        b.normals = DirectionCone::every_direction();
+        break;
+      default:  // a triangle, one- or two-sided
+        b.box.extend(c);
+        b.box.extend(c + random_in_box(rng, 0.5f));
+        b.box.extend(c + random_in_box(rng, 0.5f));
+        b.normals = {random_direction(rng), 1.0f};
+        b.two_sided = rng.next_float() < 0.3f;
+    }
+  }
+  lights[3].power = 0;  // a black light is never picked
+  return lights;
+}
+
+TEST(LightTree, PicksFormADistributionThatMatchesItsPmf) {
+  Pcg32 rng(3, 4);
+  const std::vector<LightBounds> lights = mixed_lights(rng, 300);
+  const LightTree tree(lights);
+  ASSERT_FALSE(tree.empty());
+  for (int point = 0; point < 40; ++point) {
+    const Vec3 p = random_in_box(rng, 7.0f);
+    const Vec3 n = point % 4 == 0 ? Vec3() : random_direction(rng);
+    SCOPED_TRACE(::testing::Message() << "point " << point);
+    // The pmfs sum to at most 1: where a branch's bounds admit light but neither child's do, the
+    // walk finds nothing, which is correct (none of them can light p) and draws nothing.
+    std::vector<double> pmf(lights.size() + 1);
+    double total = 0;
+    for (size_t k = 0; k < lights.size(); ++k) total += pmf[k] = tree.pmf(int(k), p, n);
+    EXPECT_EQ(pmf[3], 0.0);
+    EXPECT_LE(total, 1.0 + 1e-5);
+    EXPECT_GT(total, 0.5);
+    pmf.back() = std::max(0.0, 1.0 - total);  // the last bin: nothing drawn
+
+    // Draws land on items (or on nothing) as often as the pmfs say (chi-square, small bins
+    // pooled), and each draw reports the pmf that pmf() gives.
+    constexpr int kDraws = 200000;
+    std::vector<double> observed(pmf.size(), 0.0);
+    for (int i = 0; i < kDraws; ++i) {
+      const auto pick = tree.sample(p, n, rng.next_float());
+      if (!pick) {
+        observed.back() += 1;
+        continue;
+      }
+      ASSERT_NEAR(pick->pmf, pmf[size_t(pick->item)], 1e-5 * pmf[size_t(pick->item)]);
+      observed[size_t(pick->item)] += 1;
+    }
+    double chi2 = 0, pooled_observed = 0, pooled_expected = 0;
+    int bins = 0;
+    for (size_t k = 0; k < pmf.size(); ++k) {
+      const double expected = pmf[k] * kDraws;
+      if (expected < 5) {
+        pooled_observed += observed[k];
+        pooled_expected += expected;
+        continue;
+      }
+      chi2 += (observed[k] - expected) * (observed[k] - expected) / expected;
+      ++bins;
+    }
+    if (pooled_expected >= 5) {
+      chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
+      ++bins;
+    }
+    ASSERT_GT(bins, 1);
+    EXPECT_LT(chi2, test::chi2_critical(bins - 1));
+  }
+}
+
+// Conservative bounds: wherever some point of a light sends light to a surface, the light can be
+// picked; a spot is never picked where it sends nothing. Checked through Emitters, which builds the
+// bounds from the scene.
+TEST(LightTree, NeverMissesALightThatReachesThePoint) {
+  Pcg32 rng(5, 6);
+  SceneDesc desc;
+  const int one_sided = test::add_material(desc, Rgb(0.0f), Rgb(1.0f));
+  const int two_sided = test::add_material(desc, Rgb(0.0f), Rgb(2.0f), true);
+  for (int q = 0; q < 40; ++q)
+    test::add_quad(desc, random_in_box(rng, 4.0f), random_in_box(rng, 0.6f), random_in_box(rng, 0.6f),
+                   q % 3 == 0 ? two_sided : one_sided);
+  PunctualLightDesc spot;
+  spot.type = LightType::Spot;
+  spot.position = Vec3(0, 0, 6);
+  spot.direction = Vec3(0, 0, -1);
+  spot.cos_inner = std::cos(0.2f);
+  spot.cos_outer = std::cos(0.4f);
+  desc.lights.push_back(spot);
+  const Emitters emitters(desc);
+  const int spot_index = int(emitters.size());
+  ASSERT_EQ(emitters.size(), 80u);
+  int reachable = 0;
+  for (int point = 0; point < 400; ++point) {
+    const Vec3 p = random_in_box(rng, 6.0f);
+    const Vec3 n = random_direction(rng);
+    for (int e = 0; e < int(emitters.size()); ++e) {
+      const InstanceDesc& inst = desc.instances[size_t(e / 2)];
+      const PrimitiveDesc& prim = desc.meshes[size_t(inst.mesh)].primitives[0];
+      const uint32_t* idx = &prim.indices[size_t(3 * (e % 2))];
+      const Vec3 a = prim.positions[idx[0]], b = prim.positions[idx[1]], c = prim.positions[idx[2]];
+      const Vec3 normal = normalize(cross(b - a, c - a));
+      const bool double_sided = desc.materials[size_t(prim.material)].double_sided;
+      bool reaches = false;
+      for (int s = 0; s < 64 && !reaches; ++s) {
+        const Vec2 u = sample_uniform_triangle({rng.next_float(), rng.next_float()});
+        const Vec3 x = a * u.x + b * u.y + c * (1 - u.x - u.y);
+        const float facing = dot(normal, p - x);
+        reaches = (facing > 0 || (double_sided && facing < 0)) && dot(n, x - p) != 0;
+      }
+      if (!reaches) continue;
+      ++reachable;
+      ASSERT_GT(emitters.pick_probability(e, p, n, LightSampling::Tree), 0.0f) << "emitter " << e << " point " << point;
+    }
+    const Vec3 to_p = normalize(p - spot.position);
+    const float spot_pick = emitters.pick_probability(spot_index, p, n, LightSampling::Tree);
+    const float cos_p = dot(to_p, spot.direction);
+    if (cos_p > spot.cos_outer + 1e-4f) {
+      EXPECT_GT(spot_pick, 0.0f) << "point " << point;
+    } else if (cos_p < spot.cos_outer - 1e-4f) {
+      EXPECT_EQ(spot_pick, 0.0f) << "point " << point;
+    }
+  }
+  EXPECT_GT(reachable, 1000);
+}
+
+TEST(LightTree, HoldsUpOnDegenerateSets) {
+  // Many lights alike: one leaf, chosen among by power.
+  std::vector<LightBounds> same(100000);
+  for (LightBounds& b : same) {
+    b.box.extend(Vec3(1, 2, 3));
+    b.normals = DirectionCone::every_direction();
+    b.power = 1;
+  }
+  same[777].power = 3;
+  const LightTree stacked(same);
+  EXPECT_EQ(stacked.depth(), 0);
+  EXPECT_NEAR(stacked.pmf(12345, Vec3(0, 0, 0), Vec3(0, 0, 1)), 1.0 / 100002, 1e-11);
+  EXPECT_NEAR(stacked.pmf(777, Vec3(0, 0, 0), Vec3(0, 0, 1)), 3.0 / 100002, 1e-11);
+  int hits = 0;
+  for (int i = 0; i < 100000; ++i) hits += stacked.sample(Vec3(), Vec3(), (float(i) + 0.5f) / 100000)->item == 777;
+  EXPECT_EQ(hits, 3);
+  // Many lights in one place with different orientations: split by count, as deep as a balanced
+  // tree.
+  for (size_t k = 0; k < same.size(); ++k) same[k].normals = {normalize(Vec3(1, float(k), 2)), 1.0f};
+  EXPECT_LE(LightTree(same).depth(), 17);
+  // Lights spread over 30 decades of distance (what scenes/ may span: NUMERICS.md): the
+  // surface-area split would peel one light per level; past a depth limit the builder halves by
+  // count instead.
+  std::vector<LightBounds> spread(2000);
+  for (size_t k = 0; k < spread.size(); ++k) {
+    spread[k].box.extend(Vec3(std::pow(10.0f, -15.0f + 30.0f * float(k) / float(spread.size())), 0, 0));
+    spread[k].normals = DirectionCone::every_direction();
+    spread[k].power = 1;
+  }
+  const LightTree peeled(spread);
+  EXPECT_LE(peeled.depth(), 48 + 11);
+  double total = 0;
+  for (int k = 0; k < int(spread.size()); ++k) total += peeled.pmf(k, Vec3(0.5f, 1, 0), Vec3());
+  EXPECT_NEAR(total, 1.0, 1e-4);
+  // No light with power: nothing to pick.
+  std::vector<LightBounds> dark(3);
+  const LightTree none(dark);
+  EXPECT_TRUE(none.empty());
+  EXPECT_FALSE(none.sample(Vec3(), Vec3(), 0.5f).has_value());
+  EXPECT_EQ(none.pmf(1, Vec3(), Vec3()), 0.0f);
+}
+
+TEST(DirectionCone, UnionHoldsBothCones) {
+  Pcg32 rng(7, 8);
+  for (int i = 0; i < 2000; ++i) {
+    const DirectionCone a{random_direction(rng), std::cos(kPi * rng.next_float() * rng.next_float())};
+    const DirectionCone b{random_direction(rng), std::cos(kPi * rng.next_float() * rng.next_float())};
+    const DirectionCone u = cone_union(a, b);
+    for (const DirectionCone* c : {&a, &b})
+      for (int k = 0; k < 16; ++k) {
+        // A direction on the edge of cone c.
+        const Vec3 w = random_direction(rng);
+        const Vec3 side = normalize(w - c->w * dot(w, c->w));
+        const float sin_t = std::sqrt(std::max(0.0f, 1 - c->cos_theta * c->cos_theta));
+        const Vec3 edge = c->w * c->cos_theta + side * sin_t;
+        ASSERT_GE(dot(edge, u.w), u.cos_theta - 2e-5f) << "pair " << i;
+      }
+  }
+}
+
+}  // namespace
+}  // namespace prism

@@ -25,7 +25,8 @@ namespace {
 std::vector<std::string> canonical_scenes() {
   const std::filesystem::path root = PRISM_SOURCE_DIR;
   std::vector<std::string> scenes = {(root / "scenes/cornell-box/cornell-box.gltf").string(),
-                                     (root / "scenes/cornell-glass/cornell-glass.json").string()};
+                                     (root / "scenes/cornell-glass/cornell-glass.json").string(),
+                                     (root / "scenes/many-lights/many-lights.gltf").string()};
   const std::filesystem::path heavy = root / "scenes/heavy-mesh/heavy-mesh.glb";
   if (std::filesystem::exists(heavy)) scenes.push_back(heavy.string());
   else
@@ -117,7 +118,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
       "bench", "Render the canonical scenes and print, per scene: triangles, BVH build and render seconds, Mpaths/s, "
                "Mrays/s (all, camera, extension, shadow) and peak memory");
   cmd->add_option("SCENES", o.scenes,
-                  "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass and, once generated, "
+                  "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass, scenes/many-lights and, once generated, "
                   "scenes/heavy-mesh)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (default 16)")->check(CLI::PositiveNumber);
   cmd->add_option("--res", o.resolution, "Image size WIDTHxHEIGHT (default 512x512)");

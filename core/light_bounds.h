@@ -54,7 +54,10 @@ class LightImportance {
   float power_ = 0;        // scaled by power_scale
 };
 
-LightBounds merge(const LightBounds& a, const LightBounds& b);
+// Bounds of both groups; `cones` unites their normals' cones (cone_union, or a looser one that is
+// cheaper to find).
+LightBounds merge(const LightBounds& a, const LightBounds& b,
+                  DirectionCone (*cones)(const DirectionCone&, const DirectionCone&) = cone_union);
 
 // The orientation measure M_Omega of Conty Estevez & Kulla (eq. 1): the solid angle the group's
 // emission spreads over, cosine-weighted past theta_o; pi for a one-sided planar emitter.

@@ -38,8 +38,9 @@ class LightTree {
     int32_t first = -1;  // leaf: its lights are slots first .. first + count - 1
     int32_t count = 0;
   };
-  int build(std::vector<int>& order, const std::vector<LightBounds>& items, size_t begin, size_t end, int parent,
-            int depth);
+  struct BuildItem;
+  // Builds the subtree over lights[begin, end) as node nodes_.size(); returns its bounds.
+  LightBounds build(std::vector<BuildItem>& lights, size_t begin, size_t end, int parent, int depth);
   // Picks among a leaf's lights by power; returns the slot and its probability.
   std::pair<int, float> pick_in_leaf(const Node& leaf, float u) const;
   float slot_probability(int slot) const {

@@ -11,6 +11,9 @@ import struct
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
+
 MM = 0.001  # the published data is in millimetres
 
 # Linear-RGB reflectances commonly used for the box's measured spectra.
@@ -96,16 +99,10 @@ def oriented(quad, facing, object_centre):
 
 
 def build(glass, large_light=False):
-    blob = bytearray()
-    buffer_views, accessors, meshes, nodes = [], [], [], []
+    buffer = GltfBuffer()
+    add_view = buffer.add_view
+    accessors, meshes, nodes = [], [], []
     material_index = {name: i for i, name in enumerate(MATERIALS)}
-
-    def add_view(data, target):
-        while len(blob) % 4:
-            blob.append(0)
-        buffer_views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
-        blob.extend(data)
-        return len(buffer_views) - 1
 
     for name, material, quads, facing in SURFACES:
         if large_light and name == "light":
@@ -164,9 +161,9 @@ def build(glass, large_light=False):
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": 2 * math.atan(12.5 / 35.0), "aspectRatio": 1.0, "znear": 0.01}}],
         "accessors": accessors,
-        "bufferViews": buffer_views,
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": buffer.views,
+        "buffers": [{"byteLength": len(buffer.data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}],
     }
 
 

@@ -9,8 +9,12 @@ import argparse
 import json
 import math
 import struct
+import sys
 from array import array
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
 
 
 def blob(segments):
@@ -76,7 +80,8 @@ def main():
         ("floor", quad([(-4, 0, -4), (-4, 0, 4), (4, 0, 4), (4, 0, -4)], (0, 1, 0)), 1),
         ("light", quad([(-0.8, 3.5, -0.5), (0.8, 3.5, -0.5), (0.8, 3.5, 0.5), (-0.8, 3.5, 0.5)], (0, -1, 0)), 2),
     ]
-    blob_bytes = bytearray()
+    buffer = GltfBuffer()
+    blob_bytes = buffer.data
     gltf = {
         "asset": {"version": "2.0", "generator": "prism scenes/heavy-mesh/generate.py"},
         "scene": 0,
@@ -94,18 +99,12 @@ def main():
         ],
         "extensionsUsed": ["KHR_materials_emissive_strength"],
         "accessors": [],
-        "bufferViews": [],
+        "bufferViews": buffer.views,
         "buffers": [],
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "aspectRatio": 1.0, "znear": 0.05}}],
     }
 
-    def add_view(data, target):
-        while len(blob_bytes) % 4:
-            blob_bytes.append(0)
-        gltf["bufferViews"].append({"buffer": 0, "byteOffset": len(blob_bytes), "byteLength": len(data),
-                                    "target": target})
-        blob_bytes.extend(data)
-        return len(gltf["bufferViews"]) - 1
+    add_view = buffer.add_view
 
     triangles = 0
     for name, (pos, nrm, idx), material in meshes:

@@ -9,7 +9,11 @@ import base64
 import json
 import math
 import struct
+import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
 
 GRID = 8          # lamps per side
 SPACING = 1.5     # metres between lamps
@@ -75,15 +79,9 @@ def look_at_rotation(eye, target):
 
 
 def build():
-    blob = bytearray()
-    views, accessors, meshes, nodes, materials = [], [], [], [], []
-
-    def add_view(data, target):
-        while len(blob) % 4:
-            blob.append(0)
-        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
-        blob.extend(data)
-        return len(views) - 1
+    buffer = GltfBuffer()
+    add_view = buffer.add_view
+    accessors, meshes, nodes, materials = [], [], [], []
 
     def add_mesh(name, quads, material):
         positions, indices = [], []
@@ -145,9 +143,9 @@ def build():
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": 0.9, "aspectRatio": 1.0, "znear": 0.01}}],
         "accessors": accessors,
-        "bufferViews": views,
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": buffer.views,
+        "buffers": [{"byteLength": len(buffer.data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}],
     }
 
 

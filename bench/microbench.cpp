@@ -23,6 +23,14 @@ const Scene& cornell_box() {
   return scene;
 }
 
+const Scene& many_lights() {
+  static const Scene scene = [] {
+    Diagnostics diag;
+    return Scene(load_gltf(PRISM_SOURCE_DIR "/scenes/many-lights/many-lights.gltf", diag));
+  }();
+  return scene;
+}
+
 // Rays from random points inside the box in uniformly random directions.
 std::vector<Ray> random_rays(size_t n) {
   Pcg32 rng(1, 2);
@@ -134,8 +142,8 @@ BENCHMARK(BM_BsdfBounceRoughPlastic);
 
 // Next-event estimation's light choice and point from shading point ref (surface normal n); the
 // argument picks the light sampler (0 tree, 1 power).
-void emitter_sample_benchmark(benchmark::State& state, const Vec3& ref, const Vec3& n) {
-  const Scene& scene = cornell_box();
+void emitter_sample_benchmark(benchmark::State& state, const Vec3& ref, const Vec3& n,
+                              const Scene& scene = cornell_box()) {
   const LightSampling how = state.range(0) == 0 ? LightSampling::Tree : LightSampling::Power;
   Pcg32 rng(5, 6);
   for (auto _ : state)
@@ -153,6 +161,12 @@ void BM_EmitterSampleNearLight(benchmark::State& state) {
   emitter_sample_benchmark(state, Vec3(0.01f, 0.5f, 0.28f) - cornell_box().origin(), Vec3(1, 0, 0));
 }
 BENCHMARK(BM_EmitterSampleNearLight)->Arg(0)->Arg(1);
+
+// From the floor of scenes/many-lights, between lamps: the light tree's walk over 64 leaves.
+void BM_EmitterSampleManyLights(benchmark::State& state) {
+  emitter_sample_benchmark(state, Vec3(0.3f, 0.0f, 0.4f) - many_lights().origin(), Vec3(0, 1, 0), many_lights());
+}
+BENCHMARK(BM_EmitterSampleManyLights)->Arg(0)->Arg(1);
 
 void BM_IntersectRandomRays(benchmark::State& state) {
   const Scene& scene = cornell_box();

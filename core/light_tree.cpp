@@ -12,10 +12,9 @@ constexpr int kBuckets = 12;
 // Past this depth splits halve by count, so a pathological spread of lights cannot make the tree
 // (and the builder's recursion) as deep as it is long.
 constexpr int kMaxSahDepth = 48;
-// Above this many lights a node halves by count along its widest spread without the cost search:
-// an emissive mesh of a million triangles then builds in about a second rather than eight, and
-// the search still shapes every subtree below this size, where lights differ in place and
-// orientation at the scale that matters to a shading point.
+// Above this many lights a node halves by count along its widest spread without the cost search,
+// which still shapes every subtree below this size. Only emissive meshes of tens of thousands of
+// triangles reach it; its effect on their noise is not measured (docs/PERFORMANCE.md).
 constexpr size_t kMaxSahLights = 16384;
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 

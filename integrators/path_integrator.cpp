@@ -100,7 +100,8 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     const EnvironmentLight& env = emitters.environment();
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
-      const float weight = path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w, light_sampling_));
+      const float weight =
+          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w, light_sampling_));
       path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;

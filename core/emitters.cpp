@@ -158,12 +158,10 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
   tree_ = LightTree(bounded);
   top_power[0] = tree_.power();
   top_ = Distribution1D(top_power);
-  // A tree that is one leaf (one light, or lights it cannot tell apart) chooses by power alone.
-  tree_pays_ = tree_.depth() > 0;
 }
 
 std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u, LightSampling how) const {
-  if (how == LightSampling::Power || !tree_pays_) {
+  if (how == LightSampling::Power || !tree_pays()) {
     if (pick_.size() == 0) return std::nullopt;
     const size_t i = pick_.sample(u);
     return Pick{i, pick_.pmf(i)};
@@ -179,7 +177,7 @@ std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n,
 
 float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n, LightSampling how) const {
   if (index < 0 || size_t(index) >= top_slot_.size()) return 0;
-  if (how == LightSampling::Power || !tree_pays_) return pick_.pmf(size_t(index));
+  if (how == LightSampling::Power || !tree_pays()) return pick_.pmf(size_t(index));
   const int slot = top_slot_[size_t(index)];
   if (slot > 0) return top_.pmf(size_t(slot));
   return top_.pmf(0) * tree_.pmf(index, ref, ref_n);

@@ -111,7 +111,8 @@ class Emitters {
   Distribution1D top_;
   std::vector<int> unbounded_;
   std::vector<int> top_slot_;  // light -> its slot in top_, -1 for lights in the tree
-  bool tree_pays_ = false;     // the tree has more than one leaf
+  // A tree that is one leaf (one light, or lights it cannot tell apart) chooses by power alone.
+  bool tree_pays() const { return tree_.depth() > 0; }
   std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;

@@ -43,8 +43,8 @@ LightBounds merge(const LightBounds& a, const LightBounds& b,
   if (!(a.power > 0)) return b;
   if (!(b.power > 0)) return a;
   LightBounds m;
-  m.box.lo = min(a.box.lo, b.box.lo);
-  m.box.hi = max(a.box.hi, b.box.hi);
+  m.box = a.box;
+  m.box.extend(b.box);
   m.normals = cones(a.normals, b.normals);
   m.cos_emit = std::min(a.cos_emit, b.cos_emit);
   m.power = a.power + b.power;

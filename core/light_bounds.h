@@ -25,7 +25,6 @@ struct LightBounds {
   float cos_emit = 0;       // cos theta_e: how far past a normal light leaves (pi/2 for a surface)
   double power = 0;         // luminance-weighted emitted power
   bool two_sided = false;   // emits along -normal too
-
 };
 
 // LightBounds reduced to what judging it from a point needs, precomputed: a light tree's node.

@@ -62,8 +62,7 @@ struct Bucket {
   bool two_sided = false;
 
   void add(const LightBounds& b) {
-    box.lo = min(box.lo, b.box.lo);
-    box.hi = max(box.hi, b.box.hi);
+    box.extend(b.box);
     power += b.power;
     axis_sum += b.normals.w;
     cos_emit = std::min(cos_emit, b.cos_emit);
@@ -146,16 +145,13 @@ LightBounds LightTree::build(std::vector<BuildItem>& lights, size_t begin, size_
       slot_of_[size_t(item)] = static_cast<int32_t>(slot_item_.size());
       slot_item_.push_back(item);
       slot_cdf_.push_back(k + 1 == end ? 1.0 : cumulative / leaf_power);
-      slot_first_.push_back(k == begin);
     }
     return all;
   }
   Bounds3 centroids, box;
   for (size_t k = begin; k < end; ++k) {
-    const LightBounds& b = lights[k].bounds;
     centroids.extend(lights[k].centroid);
-    box.lo = min(box.lo, b.box.lo);
-    box.hi = max(box.hi, b.box.hi);
+    box.extend(lights[k].bounds.box);
   }
   // Binned search over the three axes for the cheapest plane (Conty Estevez & Kulla sec. 4.3).
   const Vec3 extent = centroids.diagonal();
@@ -245,7 +241,7 @@ std::pair<int, float> LightTree::pick_in_leaf(const Node& leaf, float u) const {
   // The first slot whose cumulative share exceeds u; the last one's is 1, above every u.
   const auto begin = slot_cdf_.begin() + leaf.first, last = begin + (leaf.count - 1);
   const int slot = static_cast<int>(std::upper_bound(begin, last, double(u)) - slot_cdf_.begin());
-  return {slot, slot_probability(slot)};
+  return {slot, slot_probability(leaf, slot)};
 }
 
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {
@@ -275,7 +271,7 @@ std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, f
 float LightTree::pmf(int item, const Vec3& p, const Vec3& n) const {
   if (item < 0 || size_t(item) >= leaf_of_.size() || leaf_of_[size_t(item)] < 0) return 0;
   int index = leaf_of_[size_t(item)];
-  float pmf = slot_probability(slot_of_[size_t(item)]);
+  float pmf = slot_probability(nodes_[size_t(index)], slot_of_[size_t(item)]);
   while (index != 0) {
     const int parent = parent_[size_t(index)];
     const float p_first = first_child_probability(nodes_[size_t(parent)], parent, p, n);

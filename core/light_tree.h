@@ -43,8 +43,9 @@ class LightTree {
   LightBounds build(std::vector<BuildItem>& lights, size_t begin, size_t end, int parent, int depth);
   // Picks among a leaf's lights by power; returns the slot and its probability.
   std::pair<int, float> pick_in_leaf(const Node& leaf, float u) const;
-  float slot_probability(int slot) const {
-    return static_cast<float>(slot_cdf_[size_t(slot)] - (slot_first_[size_t(slot)] ? 0.0 : slot_cdf_[size_t(slot) - 1]));
+  // The share of `slot` among the lights of `leaf`, which holds it.
+  float slot_probability(const Node& leaf, int slot) const {
+    return static_cast<float>(slot_cdf_[size_t(slot)] - (slot == leaf.first ? 0.0 : slot_cdf_[size_t(slot) - 1]));
   }
   // The probability of going to the first child of interior node `node`; negative when neither
   // child can light p.
@@ -54,11 +55,10 @@ class LightTree {
   std::vector<int32_t> parent_;   // per node; -1 for the root
   std::vector<int32_t> leaf_of_;  // item -> its leaf node, or -1
   std::vector<int32_t> slot_of_;  // item -> its slot
-  // Per slot: the light, the cumulative share of its leaf's power up to and including it (1 for
-  // the leaf's last), and whether it is its leaf's first.
+  // Per slot: the light, and the cumulative share of its leaf's power up to and including it (1
+  // for the leaf's last).
   std::vector<int32_t> slot_item_;
   std::vector<double> slot_cdf_;
-  std::vector<uint8_t> slot_first_;
   int depth_ = 0;
   double power_ = 0;  // of all the lights
 };

@@ -201,6 +201,7 @@ struct SceneDesc {
 struct Bounds3 {
   Vec3 lo{1e30f}, hi{-1e30f};
   void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+  void extend(const Bounds3& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
   bool empty() const { return lo.x > hi.x; }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   Vec3 diagonal() const { return hi - lo; }

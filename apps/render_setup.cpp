@@ -146,7 +146,7 @@ PreparedRender prepare_render(const RenderOptions& o) {
 
 void build_scene(PreparedRender& p, bool quiet) {
   try {
-    p.scene = std::make_unique<Scene>(std::move(p.desc), &material_alpha);
+    p.scene = std::make_unique<Scene>(std::move(p.desc), &material_alpha, light_sampling(p.settings.light_sampler));
   } catch (const std::invalid_argument& e) {
     throw InputError(p.scene_path, "", e.what());
   }

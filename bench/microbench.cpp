@@ -2,6 +2,11 @@
 // the Cornell box (the ceiling prism's own Mrays/s is measured against). Prints figures; asserts nothing.
 #include <benchmark/benchmark.h>
 
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
 #include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/sobol_sampler.h"
@@ -15,20 +20,22 @@
 namespace prism {
 namespace {
 
-const Scene& cornell_box() {
-  static const Scene scene = [] {
+// A scene of scenes/, loaded once for each light sampler (benchmarks run one at a time).
+const Scene& scene_asset(const std::string& relative, LightSampling how) {
+  static std::map<std::pair<std::string, LightSampling>, std::unique_ptr<Scene>> loaded;
+  std::unique_ptr<Scene>& scene = loaded[{relative, how}];
+  if (!scene) {
     Diagnostics diag;
-    return Scene(load_gltf(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf", diag));
-  }();
-  return scene;
+    scene = std::make_unique<Scene>(load_gltf(PRISM_SOURCE_DIR "/scenes/" + relative, diag), nullptr, how);
+  }
+  return *scene;
 }
 
-const Scene& many_lights() {
-  static const Scene scene = [] {
-    Diagnostics diag;
-    return Scene(load_gltf(PRISM_SOURCE_DIR "/scenes/many-lights/many-lights.gltf", diag));
-  }();
-  return scene;
+const Scene& cornell_box(LightSampling how = LightSampling::Tree) {
+  return scene_asset("cornell-box/cornell-box.gltf", how);
+}
+const Scene& many_lights(LightSampling how = LightSampling::Tree) {
+  return scene_asset("many-lights/many-lights.gltf", how);
 }
 
 // Rays from random points inside the box in uniformly random directions.
@@ -140,31 +147,37 @@ void BM_BsdfBounceRoughPlastic(benchmark::State& state) {
 }
 BENCHMARK(BM_BsdfBounceRoughPlastic);
 
-// Next-event estimation's light choice and point from shading point ref (surface normal n); the
-// argument picks the light sampler (0 tree, 1 power).
-void emitter_sample_benchmark(benchmark::State& state, const Vec3& ref, const Vec3& n,
-                              const Scene& scene = cornell_box()) {
-  const LightSampling how = state.range(0) == 0 ? LightSampling::Tree : LightSampling::Power;
+// The light sampler a benchmark's argument names: 0 tree, 1 power.
+LightSampling light_sampler_argument(const benchmark::State& state) {
+  return state.range(0) == 0 ? LightSampling::Tree : LightSampling::Power;
+}
+
+// Next-event estimation's light choice and point from shading point ref (surface normal n).
+void emitter_sample_benchmark(benchmark::State& state, const Vec3& ref, const Vec3& n, const Scene& scene) {
   Pcg32 rng(5, 6);
   for (auto _ : state)
-    benchmark::DoNotOptimize(scene.emitters().sample(ref, n, rng.next_float(), {rng.next_float(), rng.next_float()}, how));
+    benchmark::DoNotOptimize(scene.emitters().sample(ref, n, rng.next_float(), {rng.next_float(), rng.next_float()}));
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
 
 // From the floor.
-void BM_EmitterSample(benchmark::State& state) { emitter_sample_benchmark(state, Vec3(0.3f, 0.1f, 0.2f), Vec3(0, 1, 0)); }
+void BM_EmitterSample(benchmark::State& state) {
+  emitter_sample_benchmark(state, Vec3(0.3f, 0.1f, 0.2f), Vec3(0, 1, 0), cornell_box(light_sampler_argument(state)));
+}
 BENCHMARK(BM_EmitterSample)->Arg(0)->Arg(1);
 
 // From the top of the left wall, 5 cm under the light's plane: the light's triangles are sampled
 // by solid angle there.
 void BM_EmitterSampleNearLight(benchmark::State& state) {
-  emitter_sample_benchmark(state, Vec3(0.01f, 0.5f, 0.28f) - cornell_box().origin(), Vec3(1, 0, 0));
+  const Scene& scene = cornell_box(light_sampler_argument(state));
+  emitter_sample_benchmark(state, Vec3(0.01f, 0.5f, 0.28f) - scene.origin(), Vec3(1, 0, 0), scene);
 }
 BENCHMARK(BM_EmitterSampleNearLight)->Arg(0)->Arg(1);
 
 // From the floor of scenes/many-lights, between lamps: the light tree's walk over 64 leaves.
 void BM_EmitterSampleManyLights(benchmark::State& state) {
-  emitter_sample_benchmark(state, Vec3(0.3f, 0.0f, 0.4f) - many_lights().origin(), Vec3(0, 1, 0), many_lights());
+  const Scene& scene = many_lights(light_sampler_argument(state));
+  emitter_sample_benchmark(state, Vec3(0.3f, 0.0f, 0.4f) - scene.origin(), Vec3(0, 1, 0), scene);
 }
 BENCHMARK(BM_EmitterSampleManyLights)->Arg(0)->Arg(1);
 

@@ -50,7 +50,7 @@ Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m) {
   return e * Rgb(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 
-Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
+Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how_(how) {
   std::vector<double> power;
   instance_prim_base_.resize(desc.instances.size(), 0);
   for (size_t i = 0; i < desc.instances.size(); ++i) {
@@ -111,7 +111,7 @@ Emitters::Emitters(const SceneDesc& desc) : desc_(&desc) {
     power.push_back(double(kPi) * kPi * double(radius) * radius * environment_.mean_luminance());
   }
   pick_ = Distribution1D(power);
-  build_tree(desc, power);
+  if (how_ == LightSampling::Tree) build_tree(desc, power);
 }
 
 void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& power) {
@@ -160,8 +160,8 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
   top_ = Distribution1D(top_power);
 }
 
-std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u, LightSampling how) const {
-  if (how == LightSampling::Power || !tree_pays()) {
+std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u) const {
+  if (!tree_pays()) {
     if (pick_.size() == 0) return std::nullopt;
     const size_t i = pick_.sample(u);
     return Pick{i, pick_.pmf(i)};
@@ -175,17 +175,17 @@ std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n,
   return Pick{size_t(leaf->item), top_.pmf(0) * leaf->pmf};
 }
 
-float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n, LightSampling how) const {
-  if (index < 0 || size_t(index) >= top_slot_.size()) return 0;
-  if (how == LightSampling::Power || !tree_pays()) return pick_.pmf(size_t(index));
+float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n) const {
+  if (index < 0 || size_t(index) >= pick_.size()) return 0;
+  if (!tree_pays()) return pick_.pmf(size_t(index));
   const int slot = top_slot_[size_t(index)];
   if (slot > 0) return top_.pmf(size_t(slot));
   return top_.pmf(0) * tree_.pmf(index, ref, ref_n);
 }
 
-float Emitters::environment_pdf(const Vec3& w, LightSampling how) const {
+float Emitters::environment_pdf(const Vec3& w) const {
   if (environment_index_ < 0) return 0;
-  return pick_probability(environment_index_, Vec3(), Vec3(), how) * environment_.pdf(w);
+  return pick_probability(environment_index_, Vec3(), Vec3()) * environment_.pdf(w);
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
@@ -193,8 +193,8 @@ int Emitters::triangle_base(int instance, int primitive) const {
   return prim_emitter_base_[instance_prim_base_[instance] + primitive];
 }
 
-EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u, LightSampling how) const {
-  const std::optional<Pick> chosen = pick(ref, ref_n, u_pick, how);
+EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u) const {
+  const std::optional<Pick> chosen = pick(ref, ref_n, u_pick);
   if (!chosen) return {};
   const size_t i = chosen->index;
   if (static_cast<int>(i) == environment_index_) {
@@ -226,12 +226,11 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_pick,
   return s;
 }
 
-float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n,
-                    LightSampling how) const {
+float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const {
   if (index < 0 || index >= static_cast<int>(emitters_.size()) || pick_.size() == 0) return 0;
   const Emitter& e = emitters_[index];
   if (!(e.area > 0)) return 0;  // collinear corners: never sampled (1 / 0 x a pick of 0 is NaN)
-  const float pick_pmf = pick_probability(index, ref, ref_n, how);
+  const float pick_pmf = pick_probability(index, ref, ref_n);
   if (!(pick_pmf > 0)) return 0;
   return pick_pmf * (e.sphere ? sphere_pdf(e, ref, p, n) : triangle_pdf(e, ref, p, n));
 }

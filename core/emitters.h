@@ -42,19 +42,18 @@ class Emitters {
  public:
   Emitters() = default;
   // Collects emitters from `desc`, which must outlive this object. An emitter's power is area x pi
-  // x the luminance of mean_emission (x2 if double-sided).
-  explicit Emitters(const SceneDesc& desc);
+  // x the luminance of mean_emission (x2 if double-sided). The light tree is built only for
+  // LightSampling::Tree: choosing by power does not pay for it.
+  explicit Emitters(const SceneDesc& desc, LightSampling how = LightSampling::Tree);
 
   bool empty() const { return pick_.size() == 0; }
   size_t size() const { return emitters_.size(); }  // area emitters (triangles and spheres)
 
   // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
   // (zero: none); pdf 0 when nothing can be sampled.
-  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u,
-                       LightSampling how = LightSampling::Tree) const;
+  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u) const;
   // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
-  float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n,
-            LightSampling how = LightSampling::Tree) const;
+  float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const;
 
   // First emitter index of triangle primitive (instance, primitive) or -1: emitter = base + triangle.
   int triangle_base(int instance, int primitive) const;
@@ -62,13 +61,14 @@ class Emitters {
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
   const EnvironmentLight& environment() const { return environment_; }
   // Density of sample() choosing direction w toward the environment, including the choice.
-  float environment_pdf(const Vec3& w, LightSampling how = LightSampling::Tree) const;
+  float environment_pdf(const Vec3& w) const;
   // The probability of choosing light `index` (an emitter, then punctual lights, then the
   // environment) from `ref`.
-  float pick_probability(int index, const Vec3& ref, const Vec3& ref_n, LightSampling how) const;
+  float pick_probability(int index, const Vec3& ref, const Vec3& ref_n) const;
   // The same by power alone, which does not depend on where the light is seen from.
   float power_pick_probability(int index) const { return pick_.pmf(index); }
-  const LightTree& tree() const { return tree_; }
+  const LightTree& tree() const { return tree_; }  // empty unless sampling by tree
+  LightSampling light_sampling() const { return how_; }
 
  private:
   struct Emitter {
@@ -100,9 +100,10 @@ class Emitters {
     float pmf = 0;
   };
   void build_tree(const SceneDesc& desc, const std::vector<double>& power);
-  std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u, LightSampling how) const;
+  std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u) const;
 
   const SceneDesc* desc_ = nullptr;
+  LightSampling how_ = LightSampling::Tree;
   std::vector<Emitter> emitters_;
   Distribution1D pick_;
   // Tree sampling: first among the tree as a whole (slot 0, when it has lights) and the lights at
@@ -112,7 +113,7 @@ class Emitters {
   std::vector<int> unbounded_;
   std::vector<int> top_slot_;  // light -> its slot in top_, -1 for lights in the tree
   // A tree that is one leaf (one light, or lights it cannot tell apart) chooses by power alone.
-  bool tree_pays() const { return tree_.depth() > 0; }
+  bool tree_pays() const { return how_ == LightSampling::Tree && tree_.depth() > 0; }
   std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;

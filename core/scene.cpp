@@ -163,7 +163,7 @@ void Scene::attach_alpha_filter(RTCGeometry geom, int mesh, int primitive) {
   rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
 }
 
-Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alpha_(alpha) {
+Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(std::move(desc)), alpha_(alpha) {
   const auto start = std::chrono::steady_clock::now();
   validate_scene_desc(desc_);
   origin_ = choose_render_origin(desc_);
@@ -228,7 +228,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha) : desc_(std::move(desc)), alph
   rtcCommitScene(top_);
   tsan_acquire(&sphere_geometry_);  // the build threads' sphere_bounds calls are over
   throw_on_embree_error("building the scene of " + desc_.source);
-  emitters_ = Emitters(desc_);
+  emitters_ = Emitters(desc_, lights);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -31,8 +31,9 @@ class Scene {
   // With `alpha`, primitives whose material has alphaMode MASK or BLEND get Embree filter
   // functions: MASK rejects hits below the cutoff; BLEND keeps a hit with probability alpha,
   // decided by a hash of the ray and the hit so every run makes the same choice. Without it
-  // every surface is opaque.
-  explicit Scene(SceneDesc desc, AlphaFunction alpha = nullptr);
+  // every surface is opaque. `lights` is how next-event estimation will choose among the
+  // emitters (the light tree is built only when it is asked for).
+  explicit Scene(SceneDesc desc, AlphaFunction alpha = nullptr, LightSampling lights = LightSampling::Tree);
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;

@@ -27,10 +27,10 @@ LightSampling light_sampling(const std::string& name) {
 }
 
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings) {
-  const LightSampling lights = light_sampling(settings.light_sampler);  // checked for every integrator
+  light_sampling(settings.light_sampler);  // checked for every integrator; the scene is built for it
   if (settings.integrator == "path")
     return std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth, settings.max_diffuse_depth,
-                                            settings.clamp_indirect, lights);
+                                            settings.clamp_indirect);
   if (settings.integrator == "whitted") return std::make_unique<WhittedIntegrator>(settings.max_depth);
   throw std::invalid_argument("unknown integrator '" + settings.integrator + "' (known: " + joined(integrator_names()) +
                               ")");

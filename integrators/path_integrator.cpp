@@ -49,7 +49,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                                                          bool from_front, float u_pick, Vec2 u_point) const {
   const SceneDesc& desc = scene.desc();
   ShadowQuery q;
-  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_pick, u_point, light_sampling_);
+  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_pick, u_point);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -101,7 +101,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
       const float weight =
-          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w, light_sampling_));
+          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w));
       path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;
@@ -126,7 +126,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
       float w = 1.0f;
       if (!path.prev_delta)
         w = power_heuristic(path.prev_bsdf_pdf,
-                            emitters.pdf(hit.emitter, path.prev_p, path.prev_n, hit.p, hit.ng, light_sampling_));
+                            emitters.pdf(hit.emitter, path.prev_p, path.prev_n, hit.p, hit.ng));
       path.light_after(depth) += beta * Le * w;
     }
   }
@@ -137,7 +137,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   const bool from_front = dot(wo, hit.ng) > 0;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
-  // Next-event estimation: one light, chosen as light_sampling_ says; a point on it for area lights.
+  // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
     shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_pick, u.light_point);
     if (shadow.cast) {

@@ -13,15 +13,13 @@ class PathIntegrator final : public Integrator {
   // max_depth: bounces (0 = directly visible emission only); Russian roulette starts at
   // bounce rr_start_depth; max_diffuse_depth limits non-delta bounces (-1: no limit of its own);
   // clamp_indirect > 0 scales each sample's indirect light (after two or more scattering events)
-  // down to that maximum component, trading bias for fewer fireflies; light_sampling is how
-  // next-event estimation chooses a light.
-  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1, float clamp_indirect = 0,
-                 LightSampling light_sampling = LightSampling::Tree)
+  // down to that maximum component, trading bias for fewer fireflies. How next-event estimation
+  // chooses a light is the scene's (its Emitters were built for one light sampler).
+  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1, float clamp_indirect = 0)
       : max_depth_(max_depth),
         rr_start_depth_(rr_start_depth),
         max_diffuse_depth_(max_diffuse_depth),
-        clamp_indirect_(clamp_indirect),
-        light_sampling_(light_sampling) {}
+        clamp_indirect_(clamp_indirect) {}
 
   RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
                     AovSample* aov = nullptr) const override;
@@ -48,7 +46,6 @@ class PathIntegrator final : public Integrator {
   int rr_start_depth_;
   int max_diffuse_depth_;
   float clamp_indirect_;
-  LightSampling light_sampling_;
 };
 
 }  // namespace prism

@@ -149,10 +149,10 @@ TEST(LightTree, NeverMissesALightThatReachesThePoint) {
       }
       if (!reaches) continue;
       ++reachable;
-      ASSERT_GT(emitters.pick_probability(e, p, n, LightSampling::Tree), 0.0f) << "emitter " << e << " point " << point;
+      ASSERT_GT(emitters.pick_probability(e, p, n), 0.0f) << "emitter " << e << " point " << point;
     }
     const Vec3 to_p = normalize(p - spot.position);
-    const float spot_pick = emitters.pick_probability(spot_index, p, n, LightSampling::Tree);
+    const float spot_pick = emitters.pick_probability(spot_index, p, n);
     const float cos_p = dot(to_p, spot.direction);
     if (cos_p > spot.cos_outer + 1e-4f) {
       EXPECT_GT(spot_pick, 0.0f) << "point " << point;
@@ -161,6 +161,27 @@ TEST(LightTree, NeverMissesALightThatReachesThePoint) {
     }
   }
   EXPECT_GT(reachable, 1000);
+}
+
+// Choosing by power builds no tree (a large emissive mesh would pay seconds for it at start-up)
+// and chooses every light by its power alone, wherever it is seen from.
+TEST(LightTree, IsNotBuiltWhenLightsAreChosenByPower) {
+  Pcg32 rng(9, 10);
+  SceneDesc desc;
+  const int dim = test::add_material(desc, Rgb(0.0f), Rgb(1.0f));
+  const int bright = test::add_material(desc, Rgb(0.0f), Rgb(5.0f));
+  for (int q = 0; q < 12; ++q)
+    test::add_quad(desc, random_in_box(rng, 4.0f), random_in_box(rng, 0.6f), random_in_box(rng, 0.6f),
+                   q % 4 == 0 ? bright : dim);
+  const Emitters by_tree(desc, LightSampling::Tree), by_power(desc, LightSampling::Power);
+  EXPECT_GT(by_tree.tree().depth(), 0);
+  EXPECT_TRUE(by_power.tree().empty());
+  EXPECT_EQ(by_power.light_sampling(), LightSampling::Power);
+  for (int point = 0; point < 20; ++point) {
+    const Vec3 p = random_in_box(rng, 6.0f), n = random_direction(rng);
+    for (int e = 0; e < int(by_power.size()); ++e)
+      ASSERT_EQ(by_power.pick_probability(e, p, n), by_power.power_pick_probability(e)) << "emitter " << e;
+  }
 }
 
 TEST(LightTree, HoldsUpOnDegenerateSets) {

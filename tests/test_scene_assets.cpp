@@ -101,7 +101,7 @@ TEST(SceneAssets, ManyLightsBuildsALightTreeOverItsLamps) {
   const int first_lamp = emitters.triangle_base(3, 0);  // instances: floor, ceiling, pillars, lamps
   ASSERT_GE(first_lamp, 0);
   for (int t = 0; t < 2; ++t) {
-    tree_pick += emitters.pick_probability(first_lamp + t, under - scene.origin(), Vec3(0, 1, 0), LightSampling::Tree);
+    tree_pick += emitters.pick_probability(first_lamp + t, under - scene.origin(), Vec3(0, 1, 0));
     power_pick += emitters.power_pick_probability(first_lamp + t);
   }
   EXPECT_GT(tree_pick, 10 * power_pick) << "tree " << tree_pick << ", power " << power_pick;

@@ -98,6 +98,13 @@ bool same_bounds(const LightBounds& a, const LightBounds& b) {
 
 }  // namespace
 
+struct LightTree::BinaryNode {
+  LightImportance importance;
+  int32_t right = -1;  // interior: the second child (the first follows this node); leaf: -1
+  int32_t first = -1;  // its lights are slots first .. first + count - 1 (depth first order)
+  int32_t count = 0;
+};
+
 // A light as the builder moves it around: kept together so each level reads memory in order.
 struct LightTree::BuildItem {
   LightBounds bounds;
@@ -106,7 +113,6 @@ struct LightTree::BuildItem {
 };
 
 LightTree::LightTree(const std::vector<LightBounds>& items) {
-  leaf_of_.assign(items.size(), -1);
   slot_of_.assign(items.size(), -1);
   std::vector<BuildItem> lights;
   lights.reserve(items.size());
@@ -116,32 +122,79 @@ LightTree::LightTree(const std::vector<LightBounds>& items) {
       power_ += items[k].power;
     }
   if (lights.empty()) return;
-  nodes_.reserve(2 * lights.size() - 1);
-  parent_.reserve(2 * lights.size() - 1);
-  build(lights, 0, lights.size(), -1, 0);
+  std::vector<BinaryNode> binary;
+  binary.reserve(2 * lights.size() - 1);
+  build(binary, lights, 0, lights.size(), 0);
+  if (binary[0].right >= 0) {
+    // Each node stands for at least one interior binary node. Reserving that many touches no
+    // memory yet, and growing the vector instead would copy (and fault in) it several times.
+    nodes_.reserve(binary.size() / 2);
+    collapse(binary, 0);
+  } else {
+    Node root;
+    root.importance[0] = binary[0].importance;
+    root.first[0] = binary[0].first;
+    root.count[0] = binary[0].count;
+    root.children = 1;
+    nodes_.push_back(root);
+  }
 }
 
-LightBounds LightTree::build(std::vector<BuildItem>& lights, size_t begin, size_t end, int parent, int depth) {
+int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
+  const int32_t index = static_cast<int32_t>(nodes_.size());
+  nodes_.emplace_back();
+  // Open b, then again and again the interior node of the most power among its descendants so
+  // far, until there are kWidth of them or all are leaves.
+  int kids[kWidth] = {b}, n = 1;
+  while (n < kWidth) {
+    int open = -1;
+    for (int k = 0; k < n; ++k)
+      if (binary[size_t(kids[k])].right >= 0 &&
+          (open < 0 || binary[size_t(kids[k])].importance.power() > binary[size_t(kids[open])].importance.power()))
+        open = k;
+    if (open < 0) break;
+    const int opened = kids[open];
+    kids[open] = opened + 1;
+    kids[n++] = binary[size_t(opened)].right;
+  }
+  // In slot order (nodes are numbered depth first, like the slots): pmf() finds a slot's child by
+  // walking the ranges in turn.
+  std::sort(kids, kids + n);
+  nodes_[size_t(index)].children = n;
+  for (int k = 0; k < n; ++k) {
+    const BinaryNode& kid = binary[size_t(kids[k])];
+    const int32_t next = kid.right >= 0 ? collapse(binary, kids[k]) : -1;  // may move nodes_
+    Node& node = nodes_[size_t(index)];
+    node.importance[k] = kid.importance;
+    node.next[k] = next;
+    node.first[k] = kid.first;
+    node.count[k] = kid.count;
+  }
+  return index;
+}
+
+LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin,
+                             size_t end, int depth) {
   depth_ = std::max(depth_, depth);
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.push_back({});
-  parent_.push_back(parent);
+  const int index = static_cast<int>(binary.size());
+  binary.push_back({});
+  // Subtrees are built depth first and leaves number their slots in that order, so this node's
+  // lights are the next end - begin slots.
+  binary.back().first = static_cast<int32_t>(slot_item_.size());
+  binary.back().count = static_cast<int32_t>(end - begin);
   bool alike = true;
   for (size_t k = begin + 1; k < end && alike; ++k) alike = same_bounds(lights[begin].bounds, lights[k].bounds);
   if (alike) {
-    Node& leaf = nodes_[size_t(index)];
+    BinaryNode& leaf = binary[size_t(index)];
     LightBounds all = lights[begin].bounds;
     double leaf_power = 0;
     for (size_t k = begin; k < end; ++k) leaf_power += lights[k].bounds.power;
     all.power = leaf_power;
     leaf.importance = LightImportance(all, 1.0 / power_);
-    leaf.first = static_cast<int32_t>(slot_item_.size());
-    leaf.count = static_cast<int32_t>(end - begin);
     double cumulative = 0;
     for (size_t k = begin; k < end; ++k) {
       const int item = lights[k].item;
       cumulative += lights[k].bounds.power;
-      leaf_of_[size_t(item)] = index;
       slot_of_[size_t(item)] = static_cast<int32_t>(slot_item_.size());
       slot_item_.push_back(item);
       slot_cdf_.push_back(k + 1 == end ? 1.0 : cumulative / leaf_power);
@@ -220,66 +273,86 @@ LightBounds LightTree::build(std::vector<BuildItem>& lights, size_t begin, size_
                      [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
   if (mid == begin || mid == end) mid = begin + (end - begin) / 2;
-  const LightBounds first = build(lights, begin, mid, index, depth + 1);
-  const int right = static_cast<int>(nodes_.size());
-  const LightBounds second = build(lights, mid, end, index, depth + 1);
+  const LightBounds first = build(binary, lights, begin, mid, depth + 1);
+  const int right = static_cast<int>(binary.size());
+  const LightBounds second = build(binary, lights, mid, end, depth + 1);
   const LightBounds all = merge(first, second);
-  nodes_[size_t(index)].right = right;
-  nodes_[size_t(index)].importance = LightImportance(all, 1.0 / power_);
+  binary[size_t(index)].right = right;
+  binary[size_t(index)].importance = LightImportance(all, 1.0 / power_);
   return all;
 }
 
-float LightTree::first_child_probability(const Node& node, int index, const Vec3& p, const Vec3& n) const {
-  const float first = nodes_[size_t(index) + 1].importance(p, n);
-  const float second = nodes_[size_t(node.right)].importance(p, n);
-  const float sum = first + second;
-  if (!(sum > 0)) return -1.0f;
-  return first / sum;
+float LightTree::judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
+  // All four, unused ones too (they come to 0): a fixed count the compiler can unroll.
+  for (int k = 0; k < kWidth; ++k) importance[k] = node.importance[k](p, n);
+  return (importance[0] + importance[1]) + (importance[2] + importance[3]);
 }
 
-std::pair<int, float> LightTree::pick_in_leaf(const Node& leaf, float u) const {
+std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float u) const {
   // The first slot whose cumulative share exceeds u; the last one's is 1, above every u.
-  const auto begin = slot_cdf_.begin() + leaf.first, last = begin + (leaf.count - 1);
+  const auto begin = slot_cdf_.begin() + first, last = begin + (count - 1);
   const int slot = static_cast<int>(std::upper_bound(begin, last, double(u)) - slot_cdf_.begin());
-  return {slot, slot_probability(leaf, slot)};
+  return {slot, slot_probability(first, slot)};
 }
 
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {
   if (nodes_.empty()) return std::nullopt;
   int index = 0;
   float pmf = 1.0f;
-  while (nodes_[size_t(index)].right >= 0) {
+  for (;;) {
     const Node& node = nodes_[size_t(index)];
-    const float p_first = first_child_probability(node, index, p, n);
-    if (p_first < 0) return std::nullopt;
-    if (u < p_first) {
-      u = std::min(u / p_first, kOneMinusEpsilon);
-      pmf *= p_first;
-      index = index + 1;
-    } else {
-      u = std::min((u - p_first) / (1.0f - p_first), kOneMinusEpsilon);
-      pmf *= 1.0f - p_first;
-      index = node.right;
+    int k = 0;
+    // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in
+    // sampling by power; what cannot reach p then contributes nothing.
+    if (node.children > 1) {
+      float importance[kWidth];
+      const float sum = judge(node, p, n, importance);
+      if (!(sum > 0)) return std::nullopt;
+      // The child whose share of [0, sum) holds u * sum; children of importance 0 are skipped,
+      // rounding cannot land on them.
+      const float target = u * sum;
+      float below = 0;
+      int last = 0;
+      for (int c = 0; c < node.children; ++c)
+        if (importance[c] > 0) last = c;
+      k = last;
+      for (int c = 0; c < last; ++c) {
+        if (importance[c] > 0 && target < below + importance[c]) {
+          k = c;
+          break;
+        }
+        below += importance[c];
+      }
+      u = std::clamp((target - below) / importance[k], 0.0f, kOneMinusEpsilon);
+      pmf *= importance[k] / sum;
     }
+    if (node.next[k] < 0) {
+      const auto [slot, share] = pick_in_leaf(node.first[k], node.count[k], u);
+      return Pick{slot_item_[size_t(slot)], pmf * share};
+    }
+    index = node.next[k];
   }
-  // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in
-  // sampling by power; what cannot reach p then contributes nothing.
-  const auto [slot, share] = pick_in_leaf(nodes_[size_t(index)], u);
-  return Pick{slot_item_[size_t(slot)], pmf * share};
 }
 
+// The walk sample() makes toward `item`'s slot, with the same numbers in the same order.
 float LightTree::pmf(int item, const Vec3& p, const Vec3& n) const {
-  if (item < 0 || size_t(item) >= leaf_of_.size() || leaf_of_[size_t(item)] < 0) return 0;
-  int index = leaf_of_[size_t(item)];
-  float pmf = slot_probability(nodes_[size_t(index)], slot_of_[size_t(item)]);
-  while (index != 0) {
-    const int parent = parent_[size_t(index)];
-    const float p_first = first_child_probability(nodes_[size_t(parent)], parent, p, n);
-    if (p_first < 0) return 0;
-    pmf *= index == parent + 1 ? p_first : 1.0f - p_first;
-    index = parent;
+  if (item < 0 || size_t(item) >= slot_of_.size() || slot_of_[size_t(item)] < 0) return 0;
+  const int slot = slot_of_[size_t(item)];
+  int index = 0;
+  float pmf = 1.0f;
+  for (;;) {
+    const Node& node = nodes_[size_t(index)];
+    int k = 0;
+    while (slot >= node.first[k] + node.count[k]) ++k;
+    if (node.children > 1) {
+      float importance[kWidth];
+      const float sum = judge(node, p, n, importance);
+      if (!(sum > 0) || !(importance[k] > 0)) return 0;
+      pmf *= importance[k] / sum;
+    }
+    if (node.next[k] < 0) return pmf * slot_probability(node.first[k], slot);
+    index = node.next[k];
   }
-  return pmf;
 }
 
 }  // namespace prism

@@ -29,32 +29,41 @@ class LightTree {
   std::optional<Pick> sample(const Vec3& p, const Vec3& n, float u) const;
   // The probability that sample(p, n, .) picks `item`.
   float pmf(int item, const Vec3& p, const Vec3& n) const;
+  // Of the binary hierarchy as built; the walk takes about half as many steps (see Node).
   int depth() const { return depth_; }
 
  private:
+  // The binary hierarchy is built first (the split search is binary), then each node takes its
+  // grandchildren as its children: up to four, judged side by side. Their four evaluations are
+  // independent, so they overlap in the processor, and the walk has half the levels, each a
+  // chain of square roots and divisions bound by latency.
+  static constexpr int kWidth = 4;
   struct Node {
-    LightImportance importance;
-    int32_t right = -1;  // interior: the second child (the first follows this node); leaf: -1
-    int32_t first = -1;  // leaf: its lights are slots first .. first + count - 1
-    int32_t count = 0;
+    LightImportance importance[kWidth];  // unused children have no power: importance 0
+    int32_t next[kWidth] = {-1, -1, -1, -1};  // a child's node, or -1 for a leaf
+    int32_t first[kWidth] = {};  // a child's lights are slots first .. first + count - 1
+    int32_t count[kWidth] = {};
+    int32_t children = 0;        // 1 only for a root that is a leaf: it is not judged
   };
+  struct BinaryNode;
   struct BuildItem;
-  // Builds the subtree over lights[begin, end) as node nodes_.size(); returns its bounds.
-  LightBounds build(std::vector<BuildItem>& lights, size_t begin, size_t end, int parent, int depth);
-  // Picks among a leaf's lights by power; returns the slot and its probability.
-  std::pair<int, float> pick_in_leaf(const Node& leaf, float u) const;
-  // The share of `slot` among the lights of `leaf`, which holds it.
-  float slot_probability(const Node& leaf, int slot) const {
-    return static_cast<float>(slot_cdf_[size_t(slot)] - (slot == leaf.first ? 0.0 : slot_cdf_[size_t(slot) - 1]));
+  // Builds the binary subtree over lights[begin, end) as binary.size(); returns its bounds.
+  LightBounds build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin, size_t end,
+                    int depth);
+  // Makes binary node b's grandchildren (or children, where those are leaves) the children of a
+  // new node; returns its index.
+  int32_t collapse(const std::vector<BinaryNode>& binary, int b);
+  // Picks among lights [first, first + count) by power; returns the slot and its probability.
+  std::pair<int, float> pick_in_leaf(int first, int count, float u) const;
+  // The share of `slot` among the lights of the leaf that starts at `first`, which holds it.
+  float slot_probability(int first, int slot) const {
+    return static_cast<float>(slot_cdf_[size_t(slot)] - (slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1]));
   }
-  // The probability of going to the first child of interior node `node`; negative when neither
-  // child can light p.
-  float first_child_probability(const Node& node, int index, const Vec3& p, const Vec3& n) const;
+  // The children's importance at (p, n) and their sum (not positive when none can light p).
+  float judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
 
-  std::vector<Node> nodes_;
-  std::vector<int32_t> parent_;   // per node; -1 for the root
-  std::vector<int32_t> leaf_of_;  // item -> its leaf node, or -1
-  std::vector<int32_t> slot_of_;  // item -> its slot
+  std::vector<Node> nodes_;       // the root first
+  std::vector<int32_t> slot_of_;  // item -> its slot, or -1
   // Per slot: the light, and the cumulative share of its leaf's power up to and including it (1
   // for the leaf's last).
   std::vector<int32_t> slot_item_;

@@ -284,6 +284,7 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
 
 float LightTree::judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
   // All four, unused ones too (they come to 0): a fixed count the compiler can unroll.
+  static_assert(kWidth == 4, "the sum below adds four");
   for (int k = 0; k < kWidth; ++k) importance[k] = node.importance[k](p, n);
   return (importance[0] + importance[1]) + (importance[2] + importance[3]);
 }

@@ -137,6 +137,7 @@ PreparedRender prepare_render(const RenderOptions& o) {
   try {
     make_sampler(p.settings.sampler, 0);
     make_integrator(p.settings);
+    light_sampling(p.settings.light_sampler);  // build_scene builds the emitters for it
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

@@ -27,7 +27,6 @@ LightSampling light_sampling(const std::string& name) {
 }
 
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings) {
-  light_sampling(settings.light_sampler);  // checked for every integrator; the scene is built for it
   if (settings.integrator == "path")
     return std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth, settings.max_diffuse_depth,
                                             settings.clamp_indirect);

@@ -1,7 +1,6 @@
 // PathIntegrator: unidirectional path tracing with next-event estimation, MIS and Russian roulette.
 #pragma once
 
-#include "core/emitters.h"
 #include "core/integrator.h"
 #include "integrators/medium_stack.h"
 #include "materials/bsdf.h"

@@ -4,16 +4,6 @@
 #include <cmath>
 
 namespace prism {
-namespace {
-
-// The unit vector along the part of v orthogonal to unit w (a Gram-Schmidt step).
-inline Vec3 orthogonal_unit(const Vec3& v, const Vec3& w) {
-  const Vec3 o = v - w * dot(v, w);
-  const float len2 = length_squared(o);
-  return len2 > 0 ? o * (1.0f / std::sqrt(len2)) : Vec3{};
-}
-
-}  // namespace
 
 SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const Vec3 d0 = p0 - ref, d1 = p1 - ref, d2 = p2 - ref;
@@ -43,37 +33,48 @@ SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3
 }
 
 std::optional<Barycentrics> SphericalTriangle::sample(Vec2 u) const {
-  // Arvo 1995: choose the sub-triangle (a, b, c') whose area is u.x of the whole, with c' on the
-  // arc from a to c, then a point on the arc from b to c' so that the result is uniform.
-  const Vec3 n_ab = cross(a_, b_), n_ac = cross(a_, c_);
-  const float len_ab = length(n_ab), len_ac = length(n_ac);
-  if (!(len_ab > 0 && len_ac > 0 && solid_angle_ > 0)) return std::nullopt;
-  const float inv_lengths = 1.0f / (len_ab * len_ac);
-  // The angle alpha at corner a lies between the planes (a, b) and (a, c); its sine follows from
-  // (a x b) x (a x c) = (a . (b x c)) a.
-  const float cos_alpha = dot(n_ab, n_ac) * inv_lengths;
-  const float sin_alpha = std::abs(det_) * inv_lengths;
-  const float area = u.x * solid_angle_;
-  float sin_area, cos_area;
-  sincosf(area, &sin_area, &cos_area);
-  const float s = sin_area * cos_alpha - cos_area * sin_alpha;  // sin(area - alpha)
-  const float t = cos_area * cos_alpha + sin_area * sin_alpha;  // cos(area - alpha)
-  const float uu = t - cos_alpha;
-  const float v = s + sin_alpha * dot(a_, b_);
-  // cos of the arc from a to c' (Arvo's q).
-  const float q = std::clamp(((v * t - uu * s) * cos_alpha - v) / ((v * s + uu * t) * sin_alpha), -1.0f, 1.0f);
-  // c - (c . a) a = (a x c) x a, of length |a x c|.
-  const Vec3 c_across = cross(n_ac, a_) * (1.0f / len_ac);
-  const Vec3 c_sub = a_ * q + c_across * std::sqrt(std::max(0.0f, 1.0f - q * q));
-  const float z = 1.0f - u.y * (1.0f - dot(c_sub, b_));
-  const Vec3 w = b_ * z + orthogonal_unit(c_sub, b_) * std::sqrt(std::max(0.0f, 1.0f - z * z));
-  // Where the ray ref + s w meets the triangle's plane (Moller and Trumbore, JGT 1997).
-  const Vec3 s1 = cross(w, e2_);
-  const float divisor = dot(s1, e1_);
-  if (!(divisor != 0)) return std::nullopt;
-  const float inv_divisor = 1.0f / divisor;
-  float b1 = std::max(0.0f, dot(o_, s1) * inv_divisor);
-  float b2 = std::max(0.0f, dot(w, cross(o_, e1_)) * inv_divisor);
+  // Arvo 1995: choose the sub-triangle (a, b, c') whose solid angle is u.x of the whole, with c' on
+  // the arc from a to c, then a point on the arc from b to c' so that the result is uniform.
+  // Arvo finds c' through the angles of the triangle (cos q = ...) and the point through 1 - cos;
+  // both cancel catastrophically in float for slivers and grazing views (u came back off by 1e-3 to
+  // 1e-2, SphericalTriangleExtremes). Here c' comes from the solid-angle formula itself, and the
+  // point from chords, which do not cancel.
+  const Vec3 n_ac = cross(a_, c_);
+  const float sin_ac = length(n_ac);
+  if (!(sin_ac > 0 && solid_angle_ > 0)) return std::nullopt;
+  // c' = a cos phi + t sin phi, t the unit tangent at a toward c. With it a.(b x c') = sin phi a.(b x t),
+  // a.c' = cos phi and b.c' = cos phi a.b + sin phi b.t, so Van Oosterom and Strackee's
+  // tan(omega'/2) (1 + a.b + b.c' + c'.a) = |a.(b x c')|, with tau = tan(phi / 2), is linear in tau:
+  //   tau (cos(omega'/2) |a.(b x t)| - sin(omega'/2) b.t) = sin(omega'/2) (1 + a.b).
+  const Vec3 t = cross(n_ac, a_) * (1.0f / sin_ac);
+  const float det_t = std::abs(det_) / sin_ac;  // |a . (b x t)|
+  float sin_half, cos_half;
+  sincosf(0.5f * u.x * solid_angle_, &sin_half, &cos_half);
+  const float tau_divisor = cos_half * det_t - sin_half * dot(b_, t);
+  const float tau = sin_half * (1.0f + dot(a_, b_)) / tau_divisor;
+  Vec3 c_sub = c_;  // phi passes the arc's end only by rounding: stop there
+  if (tau_divisor > 0 && tau < 1e18f) {
+    const float inv = 1.0f / (1.0f + tau * tau);
+    c_sub = a_ * ((1.0f - tau * tau) * inv) + t * (2.0f * tau * inv);
+  }
+  // The point w on the arc from b to c' at 1 - w.b = u.y (1 - c'.b), where 1 - c'.b is half the
+  // chord squared; the part of c' across b is the chord plus b times that, so nothing cancels.
+  const Vec3 chord = c_sub - b_;
+  const float one_minus_z = u.y * (0.5f * dot(chord, chord));
+  const Vec3 across = chord + b_ * (0.5f * dot(chord, chord));
+  const float across_length = length(across);
+  const float sin_z = std::sqrt(std::max(0.0f, one_minus_z * (2.0f - one_minus_z)));
+  const Vec3 w = across_length > 0 ? b_ * (1.0f - one_minus_z) + across * (sin_z / across_length) : b_;
+  // Where the ray ref + s w meets the triangle's plane. Seen at a grazing angle, the distance s is
+  // uncertain, but only along w, which leaves the direction to the point as it is; Moller and
+  // Trumbore's barycentrics, by contrast, lose precision across w as well.
+  const Vec3 normal = cross(e1_, e2_);
+  const float facing = dot(w, normal);
+  if (!(facing != 0)) return std::nullopt;
+  const Vec3 q = o_ + w * (-dot(o_, normal) / facing);  // the point - p0, scaled
+  const float inv_normal2 = 1.0f / length_squared(normal);
+  float b1 = std::max(0.0f, dot(cross(q, e2_), normal) * inv_normal2);
+  float b2 = std::max(0.0f, dot(cross(e1_, q), normal) * inv_normal2);
   if (b1 + b2 > 1) {  // rounding put the point just outside
     const float sum = b1 + b2;
     b1 /= sum;

@@ -1,5 +1,5 @@
 // Sampling a triangle by solid angle at the extremes: slivers, grazing views and spherical
-// triangles from 1e-7 sr to nearly 2 pi. Each sample is mapped back to the unit square exactly (in
+// triangles from 1e-7 to 5.5 sr. Each sample is mapped back to the unit square exactly (in
 // long double, from the float corners) and must land where it came from.
 #include <gtest/gtest.h>
 
@@ -78,7 +78,7 @@ std::vector<Triangle> shapes() {
     }
   }
   // Random triangles seen from points log-uniformly 0.01 to 100 sizes off their centroid within
-  // the plane and 1e-4 to 10 sizes off it, on either side.
+  // the plane and 1e-4 to 10 sizes off it, on either side; moved so that the point is the origin.
   Pcg32 rng(2026, 1125);
   auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
   for (int i = 0; i < 200; ++i) {

@@ -125,19 +125,11 @@ LightTree::LightTree(const std::vector<LightBounds>& items) {
   std::vector<BinaryNode> binary;
   binary.reserve(2 * lights.size() - 1);
   build(binary, lights, 0, lights.size(), 0);
-  if (binary[0].right >= 0) {
-    // Each node stands for at least one interior binary node. Reserving that many touches no
-    // memory yet, and growing the vector instead would copy (and fault in) it several times.
-    nodes_.reserve(binary.size() / 2);
-    collapse(binary, 0);
-  } else {
-    Node root;
-    root.importance[0] = binary[0].importance;
-    root.first[0] = binary[0].first;
-    root.count[0] = binary[0].count;
-    root.children = 1;
-    nodes_.push_back(root);
-  }
+  // Each node stands for at least one interior binary node. Reserving that many touches no
+  // memory yet, and growing the vector instead would copy (and fault in) it several times. A
+  // root that is a leaf collapses to a node with that one child.
+  nodes_.reserve(std::max<size_t>(1, binary.size() / 2));
+  collapse(binary, 0);
 }
 
 int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {

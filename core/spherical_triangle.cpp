@@ -60,8 +60,9 @@ std::optional<Barycentrics> SphericalTriangle::sample(Vec2 u) const {
   // The point w on the arc from b to c' at 1 - w.b = u.y (1 - c'.b), where 1 - c'.b is half the
   // chord squared; the part of c' across b is the chord plus b times that, so nothing cancels.
   const Vec3 chord = c_sub - b_;
-  const float one_minus_z = u.y * (0.5f * dot(chord, chord));
-  const Vec3 across = chord + b_ * (0.5f * dot(chord, chord));
+  const float one_minus_cos = 0.5f * dot(chord, chord);  // 1 - c'.b
+  const float one_minus_z = u.y * one_minus_cos;
+  const Vec3 across = chord + b_ * one_minus_cos;
   const float across_length = length(across);
   const float sin_z = std::sqrt(std::max(0.0f, one_minus_z * (2.0f - one_minus_z)));
   const Vec3 w = across_length > 0 ? b_ * (1.0f - one_minus_z) + across * (sin_z / across_length) : b_;

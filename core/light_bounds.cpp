@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/constants.h"
 
@@ -11,11 +10,6 @@ namespace {
 
 float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 float safe_acos(float x) { return std::acos(std::clamp(x, -1.0f, 1.0f)); }
-
-// cos(max(0, a - b)) from the cosines and sines of a and b, both in [0, pi].
-float cos_minus_clamped(float cos_a, float sin_a, float cos_b, float sin_b) {
-  return cos_a >= cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
-}
 
 }  // namespace
 
@@ -74,53 +68,6 @@ float orientation_measure(const LightBounds& b) {
   const float cos_o_minus_2w = cos_o * cos_2w + sin_o * sin_2w;
   return kTwoPi * (1.0f - cos_o) +
          kPiOver2 * (2.0f * theta_w * sin_o - cos_o_minus_2w - 2.0f * theta_o * sin_o + cos_o);
-}
-
-LightImportance::LightImportance(const LightBounds& b, double power_scale)
-    : center_(b.box.center()),
-      radius_(0.5f * length(b.box.diagonal())),
-      axis_(b.normals.w),
-      cos_o_(b.normals.cos_theta),
-      sin_o_(safe_sqrt(1.0f - b.normals.cos_theta * b.normals.cos_theta)),
-      cos_emit_(b.cos_emit),
-      two_sided_(b.two_sided),
-      inv_radius2_(1.0f / std::max(radius_ * radius_, std::numeric_limits<float>::min())),
-      power_(b.power > 0 ? static_cast<float>(b.power * power_scale) : 0.0f) {}
-
-float LightImportance::operator()(const Vec3& p, const Vec3& n) const {
-  const Vec3 d = p - center_;
-  const float dist2 = length_squared(d);
-  const float inv_dist = dist2 > 0 ? 1.0f / std::sqrt(dist2) : 0.0f;
-  const Vec3 wi = dist2 > 0 ? d * inv_dist : Vec3(0, 0, 1);  // from the group toward p
-  // The box's bounding sphere seen from p subtends directions within theta_b of -wi; from inside
-  // it, every direction.
-  float cos_b = -1.0f, sin_b = 0.0f;
-  if (dist2 > radius_ * radius_) {
-    sin_b = radius_ * inv_dist;
-    cos_b = safe_sqrt(1.0f - sin_b * sin_b);
-  }
-
-  // theta' = theta_w - theta_o - theta_b: the smallest angle, from a normal of the group, at
-  // which any of its points can see p.
-  float cos_emission = 1.0f;
-  float cos_w = dot(axis_, wi);
-  if (two_sided_) cos_w = std::abs(cos_w);
-  if (cos_w < cos_o_) {
-    const float sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-    const float cos_x = cos_w * cos_o_ + sin_w * sin_o_;  // theta_w - theta_o > 0 here
-    const float sin_x = sin_w * cos_o_ - cos_w * sin_o_;
-    cos_emission = cos_minus_clamped(cos_x, sin_x, cos_b, sin_b);
-    if (cos_emission < cos_emit_) return 0;
-  }
-  // The receiving cosine, bounded the same way; |cos| because a surface may transmit.
-  float cos_receive = 1.0f;
-  if (n.x != 0 || n.y != 0 || n.z != 0) {
-    const float cos_i = std::abs(dot(n, wi));
-    cos_receive = cos_minus_clamped(cos_i, safe_sqrt(1.0f - cos_i * cos_i), cos_b, sin_b);
-  }
-  // Closer than the bounding radius the inverse square means nothing: the group is all around.
-  const float inv_d2 = dist2 > 0 ? std::min(inv_dist * inv_dist, inv_radius2_) : inv_radius2_;
-  return power_ * std::max(0.0f, cos_emission) * cos_receive * inv_d2;
 }
 
 }  // namespace prism

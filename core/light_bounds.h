@@ -27,32 +27,6 @@ struct LightBounds {
   bool two_sided = false;   // emits along -normal too
 };
 
-// LightBounds reduced to what judging it from a point needs, precomputed: a light tree's node.
-class LightImportance {
- public:
-  LightImportance() = default;
-  // power_scale divides the power, to keep importance within float range (1 / the tree's total).
-  LightImportance(const LightBounds& b, double power_scale);
-
-  // An estimate of the light the group sends to point p whose surface has unit normal n (zero:
-  // no surface), from bounds on the emission and incidence angles over the whole group: power x
-  // cos(theta') x cos(theta_i') / d^2. It is 0 only where no point of the group can light p's
-  // surface (or where it is below float range, a 1e-38 share of a tree's light), so choosing
-  // groups in proportion to it misses nothing.
-  float operator()(const Vec3& p, const Vec3& n) const;
-  float power() const { return power_; }
-
- private:
-  Vec3 center_;        // of the box
-  float radius_ = 0;   // of the box's bounding sphere
-  Vec3 axis_{0, 0, 1};
-  float cos_o_ = 1, sin_o_ = 0;  // the normals' cone
-  float cos_emit_ = 0;
-  bool two_sided_ = false;
-  float inv_radius2_ = 0;  // 1 / max(radius^2, FLT_MIN): the inverse square's cap
-  float power_ = 0;        // scaled by power_scale
-};
-
 // Bounds of both groups; `cones` unites their normals' cones (cone_union, or a looser one that is
 // cheaper to find).
 LightBounds merge(const LightBounds& a, const LightBounds& b,

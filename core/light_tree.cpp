@@ -135,6 +135,7 @@ LightTree::LightTree(const std::vector<LightBounds>& items) {
 int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
   const int32_t index = static_cast<int32_t>(nodes_.size());
   nodes_.emplace_back();
+  std::fill(std::begin(nodes_.back().next), std::end(nodes_.back().next), -1);
   // Open b, then again and again the interior node of the most power among its descendants so
   // far, until there are kWidth of them or all are leaves.
   int kids[kWidth] = {b}, n = 1;
@@ -157,7 +158,7 @@ int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
     const BinaryNode& kid = binary[size_t(kids[k])];
     const int32_t next = kid.right >= 0 ? collapse(binary, kids[k]) : -1;  // may move nodes_
     Node& node = nodes_[size_t(index)];
-    node.importance[k] = kid.importance;
+    node.importance[k / 4].set(k % 4, kid.importance);
     node.next[k] = next;
     node.first[k] = kid.first;
     node.count[k] = kid.count;
@@ -275,10 +276,14 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
 }
 
 float LightTree::judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
-  // All four, unused ones too (they come to 0): a fixed count the compiler can unroll.
-  static_assert(kWidth == 4, "the sum below adds four");
-  for (int k = 0; k < kWidth; ++k) importance[k] = node.importance[k](p, n);
-  return (importance[0] + importance[1]) + (importance[2] + importance[3]);
+  // All of them, unused ones too (they come to 0), four at a time; summed pairwise.
+  float sum = 0;
+  for (int g = 0; g < kGroups; ++g) {
+    float* four = importance + 4 * g;
+    node.importance[g].evaluate(p, n, four);
+    sum += (four[0] + four[1]) + (four[2] + four[3]);
+  }
+  return sum;
 }
 
 std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float u) const {

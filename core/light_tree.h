@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/light_bounds.h"
+#include "core/light_importance.h"
 
 namespace prism {
 
@@ -37,11 +37,12 @@ class LightTree {
   // takes up to four descendants as its children (usually its grandchildren) and a pick weighs
   // them by their own, tighter importance instead of multiplying two ratios of looser bounds. The
   // walk has half the levels, which on a tree of a million lights means half the cache misses;
-  // the four evaluations are independent, so they overlap in the processor.
+  // the four are judged at once in SIMD lanes.
   static constexpr int kWidth = 4;
+  static constexpr int kGroups = kWidth / 4;  // of four children, judged in one pass of SIMD lanes
   struct Node {
-    LightImportance importance[kWidth];  // unused children have no power: importance 0
-    int32_t next[kWidth] = {-1, -1, -1, -1};  // a child's node, or -1 for a leaf
+    LightImportance4 importance[kGroups];  // unused children have no power: importance 0
+    int32_t next[kWidth];                  // a child's node, or -1 for a leaf
     int32_t first[kWidth] = {};  // a child's lights are slots first .. first + count - 1
     int32_t count[kWidth] = {};
     int32_t children = 0;        // 1 only for a root that is a leaf: it is not judged
@@ -51,7 +52,7 @@ class LightTree {
   // Builds the binary subtree over lights[begin, end) as binary.size(); returns its bounds.
   LightBounds build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin, size_t end,
                     int depth);
-  // Makes up to four descendants of binary node b (the most powerful interior ones opened first)
+  // Makes up to kWidth descendants of binary node b (the most powerful interior ones opened first)
   // the children of a new node, in slot order; returns its index.
   int32_t collapse(const std::vector<BinaryNode>& binary, int b);
   // Picks among lights [first, first + count) by power; returns the slot and its probability.

@@ -2,7 +2,9 @@
 // light that can reach the shading point, and it holds up on degenerate sets of lights.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "chi_square.h"
@@ -224,6 +226,47 @@ TEST(LightTree, HoldsUpOnDegenerateSets) {
   EXPECT_TRUE(none.empty());
   EXPECT_FALSE(none.sample(Vec3(), Vec3(), 0.5f).has_value());
   EXPECT_EQ(none.pmf(1, Vec3(), Vec3()), 0.0f);
+}
+
+// The tree judges a node's children four at a time in SIMD lanes; each lane must give the bits the
+// one-group form gives (so sample() and pmf() agree with any scalar reasoning about them), in every
+// branch of the formula: points inside a group's sphere and at its centre, groups facing away or
+// cut off by their emission angle, two-sided ones, no surface normal, and lanes left unused.
+TEST(LightImportance4, EachLaneIsTheOneGroupFormBitForBit) {
+  Pcg32 rng(11, 12);
+  const std::vector<LightBounds> lights = mixed_lights(rng, 400);
+  std::vector<LightImportance> groups;
+  for (const LightBounds& b : lights) groups.emplace_back(b, 1e-2);
+  groups.emplace_back();  // no power
+  int checked = 0, zero = 0, inside = 0;
+  for (size_t first = 0; first + 4 <= groups.size(); first += 3) {
+    LightImportance4 four;
+    const int used = 1 + int(first % 4);  // 1 to 4 lanes set, the rest left without power
+    for (int k = 0; k < used; ++k) four.set(k, groups[first + size_t(k)]);
+    for (int i = 0; i < 24; ++i) {
+      Vec3 p = random_in_box(rng, 6.0f);
+      if (i == 0) p = lights[first].box.center();  // at a group's centre: no direction to it
+      if (i == 1) p = lights[first].box.center() + 0.1f * (lights[first].box.diagonal());  // inside its sphere
+      const Vec3 n = i % 3 == 0 ? Vec3() : random_direction(rng);
+      float lanes[4];
+      four.evaluate(p, n, lanes);
+      for (int k = 0; k < 4; ++k) {
+        const float one = k < used ? groups[first + size_t(k)](p, n) : 0.0f;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lanes[k]), std::bit_cast<uint32_t>(one))
+            << "lane " << k << " of group " << first << " at point " << i << ": " << lanes[k] << " vs " << one;
+        ++checked;
+        zero += one == 0;
+        if (k < used) {
+          const Bounds3& box = lights[first + size_t(k)].box;
+          inside += length(p - box.center()) < 0.5f * length(box.diagonal());
+        }
+      }
+    }
+  }
+  // The cases above must all have come up.
+  EXPECT_GT(zero, checked / 10);
+  EXPECT_GT(checked - zero, checked / 10);
+  EXPECT_GT(inside, 0);
 }
 
 TEST(DirectionCone, UnionHoldsBothCones) {

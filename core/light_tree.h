@@ -29,16 +29,17 @@ class LightTree {
   std::optional<Pick> sample(const Vec3& p, const Vec3& n, float u) const;
   // The probability that sample(p, n, .) picks `item`.
   float pmf(int item, const Vec3& p, const Vec3& n) const;
-  // Of the binary hierarchy as built; the walk takes about half as many steps (see Node).
+  // Of the binary hierarchy as built; the walk takes about a third as many steps (see Node).
   int depth() const { return depth_; }
 
  private:
   // The binary hierarchy is built first (the split search is binary), then collapsed: each node
-  // takes up to four descendants as its children (usually its grandchildren) and a pick weighs
-  // them by their own, tighter importance instead of multiplying two ratios of looser bounds. The
-  // walk has half the levels, which on a tree of a million lights means half the cache misses;
-  // the four are judged at once in SIMD lanes.
-  static constexpr int kWidth = 4;
+  // takes up to eight descendants as its children and a pick weighs them by their own, tighter
+  // importance instead of multiplying ratios of looser bounds. The walk has a third of the levels,
+  // which on a tree of a million lights means fewer cache misses, and the children are judged
+  // four at a time in SIMD lanes. Eight children cost what four did and choose better
+  // (docs/PERFORMANCE.md, "SIMD importance").
+  static constexpr int kWidth = 8;
   static constexpr int kGroups = kWidth / 4;  // of four children, judged in one pass of SIMD lanes
   struct Node {
     LightImportance4 importance[kGroups];  // unused children have no power: importance 0

@@ -64,7 +64,7 @@ void BM_SamplerPath(benchmark::State& state) {
     for (int bounce = 0; bounce < 4; ++bounce) {
       if (by_vertex) {
         const VertexSamples v = s.next_vertex();
-        sum += v.light_pick + add(v.light_point) + v.lobe + add(v.direction) + v.roulette;
+        sum += v.light_spare + add(v.light_point) + v.lobe + add(v.direction) + v.roulette;
         continue;
       }
       sum += s.next_1d();

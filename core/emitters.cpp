@@ -161,18 +161,18 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
 }
 
 std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u) const {
+  float remapped = 0;
   if (!tree_pays()) {
     if (pick_.size() == 0) return std::nullopt;
-    const size_t i = pick_.sample(u);
-    return Pick{i, pick_.pmf(i)};
+    const size_t i = pick_.sample(u, &remapped);
+    return Pick{i, pick_.pmf(i), remapped};
   }
   if (top_.size() == 0) return std::nullopt;
-  float remapped = 0;
   const size_t slot = top_.sample(u, &remapped);
-  if (slot > 0) return Pick{size_t(unbounded_[slot]), top_.pmf(slot)};
+  if (slot > 0) return Pick{size_t(unbounded_[slot]), top_.pmf(slot), remapped};
   const std::optional<LightTree::Pick> leaf = tree_.sample(ref, ref_n, remapped);
   if (!leaf) return std::nullopt;
-  return Pick{size_t(leaf->item), top_.pmf(0) * leaf->pmf};
+  return Pick{size_t(leaf->item), top_.pmf(0) * leaf->pmf, leaf->remapped};
 }
 
 float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n) const {
@@ -193,9 +193,16 @@ int Emitters::triangle_base(int instance, int primitive) const {
   return prim_emitter_base_[instance_prim_base_[instance] + primitive];
 }
 
-EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u) const {
-  const std::optional<Pick> chosen = pick(ref, ref_n, u_pick);
+// The emitter is chosen by u.x, which rescaled within the emitter's share then places the point:
+// the 2D draws of a pixel's samples stay stratified over all the triangles of a light together,
+// where choosing by a dimension of its own would hand each triangle a random subset of them (Cycles
+// reuses its draw the same way). Each rescaling leaves log2(1 / share) fewer bits of u.x, so below
+// a share of 2^-8 (16 bits left) the independent u_spare places the point instead: either way the
+// point is uniform given the choice, so the density is the same.
+EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u) const {
+  const std::optional<Pick> chosen = pick(ref, ref_n, u.x);
   if (!chosen) return {};
+  u.x = chosen->pmf >= 0x1p-8f ? chosen->remapped : u_spare;
   const size_t i = chosen->index;
   if (static_cast<int>(i) == environment_index_) {
     EmitterSample s;

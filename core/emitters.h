@@ -50,8 +50,9 @@ class Emitters {
   size_t size() const { return emitters_.size(); }  // area emitters (triangles and spheres)
 
   // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
-  // (zero: none); pdf 0 when nothing can be sampled.
-  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_pick, Vec2 u) const;
+  // (zero: none); pdf 0 when nothing can be sampled. u chooses the emitter and the point on it;
+  // u_spare stands in for u.x where the emitter's share of u.x is too narrow to place the point.
+  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u) const;
   // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
   float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const;
 
@@ -98,6 +99,7 @@ class Emitters {
   struct Pick {
     size_t index = 0;
     float pmf = 0;
+    float remapped = 0;  // u rescaled to [0, 1) within the chosen emitter's share of it
   };
   void build_tree(const SceneDesc& desc, const std::vector<double>& power);
   std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u) const;

@@ -286,10 +286,13 @@ float LightTree::judge(const Node& node, const Vec3& p, const Vec3& n, float imp
   return sum;
 }
 
-std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float u) const {
+std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) const {
   // The first slot whose cumulative share exceeds u; the last one's is 1, above every u.
   const auto begin = slot_cdf_.begin() + first, last = begin + (count - 1);
   const int slot = static_cast<int>(std::upper_bound(begin, last, double(u)) - slot_cdf_.begin());
+  const double below = slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1];
+  const double share = slot_cdf_[size_t(slot)] - below;
+  u = share > 0 ? static_cast<float>(std::clamp((double(u) - below) / share, 0.0, double(kOneMinusEpsilon))) : 0.0f;
   return {slot, slot_probability(first, slot)};
 }
 
@@ -326,7 +329,7 @@ std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, f
     }
     if (node.next[k] < 0) {
       const auto [slot, share] = pick_in_leaf(node.first[k], node.count[k], u);
-      return Pick{slot_item_[size_t(slot)], pmf * share};
+      return Pick{slot_item_[size_t(slot)], pmf * share, u};
     }
     index = node.next[k];
   }

@@ -22,7 +22,8 @@ class LightTree {
 
   struct Pick {
     int item = -1;
-    float pmf = 0;  // probability of choosing this item at this point
+    float pmf = 0;      // probability of choosing this item at this point
+    float remapped = 0;  // u rescaled to [0, 1) within the item's share of it
   };
   // Walks down from the root choosing each child by importance at point p with normal n (zero:
   // no surface), reusing u; nothing when no light can reach p.
@@ -56,8 +57,9 @@ class LightTree {
   // Makes up to kWidth descendants of binary node b (the most powerful interior ones opened first)
   // the children of a new node, in slot order; returns its index.
   int32_t collapse(const std::vector<BinaryNode>& binary, int b);
-  // Picks among lights [first, first + count) by power; returns the slot and its probability.
-  std::pair<int, float> pick_in_leaf(int first, int count, float u) const;
+  // Picks among lights [first, first + count) by power; returns the slot and its probability,
+  // and rescales u to [0, 1) within the slot's share.
+  std::pair<int, float> pick_in_leaf(int first, int count, float& u) const;
   // The share of `slot` among the lights of the leaf that starts at `first`, which holds it.
   float slot_probability(int first, int slot) const {
     return static_cast<float>(slot_cdf_[size_t(slot)] - (slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1]));

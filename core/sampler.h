@@ -12,7 +12,7 @@ namespace prism {
 
 // The draws a path tracer makes at each vertex of a path, in the order a sampler hands them out.
 struct VertexSamples {
-  float light_pick = 0;  // which light (1D)
+  float light_spare = 0;  // for the light sample where light_point.x runs short (1D): Emitters::sample
   Vec2 light_point;      // where on it (2D)
   float lobe = 0;        // which BSDF lobe (1D)
   Vec2 direction;        // the scattered direction (2D)
@@ -32,7 +32,7 @@ class Sampler {
   // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give.
   virtual VertexSamples next_vertex() {
     VertexSamples v;
-    v.light_pick = next_1d();
+    v.light_spare = next_1d();
     v.light_point = next_2d();
     v.lobe = next_1d();
     v.direction = next_2d();

@@ -46,10 +46,10 @@ struct PathIntegrator::ShadowQuery {
 // the light is visible is left to the shadow ray.
 PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf,
                                                          const MediumStack& media, const MaterialDesc& material,
-                                                         bool from_front, float u_pick, Vec2 u_point) const {
+                                                         bool from_front, float u_spare, Vec2 u_point) const {
   const SceneDesc& desc = scene.desc();
   ShadowQuery q;
-  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_pick, u_point);
+  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_spare, u_point);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -81,11 +81,11 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-// Each vertex that scatters draws, in order: emitter pick (1D), point on the emitter (2D), BSDF
-// lobe (1D) and direction (2D), and the Russian-roulette decision (1D), all five whether or not
-// it uses them (no light sampling at delta surfaces, no roulette before its start depth): a
-// dimension then means the same decision in every sample of a pixel, and stays stratified across
-// them (pbrt-v4 does the same).
+// Each vertex that scatters draws, in order: the light sample's spare (1D), the light and the
+// point on it (2D), BSDF lobe (1D) and direction (2D), and the Russian-roulette decision (1D), all
+// five whether or not it uses them (no light sampling at delta surfaces, no roulette before its
+// start depth): a dimension then means the same decision in every sample of a pixel, and stays
+// stratified across them (pbrt-v4 does the same).
 bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* found, ShadowQuery& shadow,
                              RayCounters& counters) const {
   const SceneDesc& desc = scene.desc();
@@ -139,7 +139,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_pick, u.light_point);
+    shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_spare, u.light_point);
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;

@@ -38,7 +38,7 @@ class PathIntegrator final : public Integrator {
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
   ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
-                           const MaterialDesc& material, bool from_front, float u_pick, Vec2 u_point) const;
+                           const MaterialDesc& material, bool from_front, float u_spare, Vec2 u_point) const;
   RadianceSample finish(Path& path) const;
 
   int max_depth_;

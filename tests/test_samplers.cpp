@@ -130,13 +130,13 @@ TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
       single->start_pixel_sample(x, y, index);
       for (int vertex = 0; vertex < 18; ++vertex) {  // 90 dimensions
         const VertexSamples v = batched->next_vertex();
-        const float at_once[7] = {v.light_pick, v.light_point.x, v.light_point.y, v.lobe,
+        const float at_once[7] = {v.light_spare, v.light_point.x, v.light_point.y, v.lobe,
                                   v.direction.x, v.direction.y,   v.roulette};
-        const float light_pick = single->next_1d();
+        const float light_spare = single->next_1d();
         const Vec2 light_point = single->next_2d();
         const float lobe = single->next_1d();
         const Vec2 direction = single->next_2d();
-        const float one_by_one[7] = {light_pick,  light_point.x, light_point.y, lobe,
+        const float one_by_one[7] = {light_spare, light_point.x, light_point.y, lobe,
                                      direction.x, direction.y,   single->next_1d()};
         for (int c = 0; c < 7; ++c)
           ASSERT_EQ(at_once[c], one_by_one[c]) << name << " trial " << trial << " vertex " << vertex << " coordinate " << c;

@@ -1,8 +1,10 @@
 // Random numbers and warping functions: reference values, determinism, chi-square tests against pdfs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
+#include "core/sobol_sampler.h"
 #include "core/spherical_triangle.h"
 #include "chi_square.h"
 #include "scene_builders.h"
@@ -315,6 +318,52 @@ TEST(Emitters, TrianglePdfIntegratesToSolidAngle) {
     const double expected = triangle_solid_angle(c - ref, c + u - ref, c + u + v - ref) +
                             triangle_solid_angle(c - ref, c + u + v - ref, c + v - ref);
     EXPECT_NEAR(stats.mean(), expected, test::kSigmas * stats.standard_error() + 1e-6 * expected) << "ref z " << ref.z;
+  }
+}
+
+TEST(Emitters, APixelsLightPointsAreStratifiedOverAllOfALightsTriangles) {
+  // A quad light is two triangles. Emitters::sample chooses between them with the first coordinate
+  // of its 2D draw and places the point with what is left of it, so a pixel's Sobol samples, a
+  // (0,2)-net in that draw, stay stratified over the quad as a whole. Count 256 of them in 4 x 4
+  // cells of equal expected count: for independent points the counts' chi-square follows
+  // chi2(15), whose mean over 32 pixels is 15 with a standard deviation of sqrt(2 x 15 / 32) =
+  // 0.97. Stratified points must come under half of that (7.7 standard deviations below). Choosing
+  // the triangle by a draw of its own, as prism did before, hands each triangle a random half of
+  // the points: 11.1 from afar and 13.0 close by.
+  SceneDesc scene;
+  const int light = test::add_material(scene, Rgb(0.0f), Rgb(1.0f));
+  const Vec3 c(-0.5f, -0.25f, 1.0f), u(1.0f, 0, 0), v(0, 0.5f, 0);
+  test::add_quad(scene, c, v, u, light);
+  Emitters emitters(scene);
+  // From afar (area sampling) and from close by (sampling by solid angle, whose cells are not
+  // those of area: there the counts are weighed against the solid angle each cell subtends).
+  for (const Vec3 ref : {Vec3(0.2f, 0.1f, -2.0f), Vec3(0.2f, 0.1f, 0.7f)}) {
+    std::vector<double> expected(16);
+    double total_solid_angle = 0;
+    for (int cell = 0; cell < 16; ++cell) {
+      const Vec3 lo = c + u * (float(cell % 4) / 4) + v * (float(cell / 4) / 4), du = u / 4, dv = v / 4;
+      expected[size_t(cell)] = ref.z < 0 ? 1.0 : triangle_solid_angle(lo - ref, lo + du - ref, lo + du + dv - ref) +
+                                                 triangle_solid_angle(lo - ref, lo + du + dv - ref, lo + dv - ref);
+      total_solid_angle += expected[size_t(cell)];
+    }
+    constexpr int kSamples = 256, kPixels = 32;
+    for (double& e : expected) e *= kSamples / (ref.z < 0 ? 16.0 : total_solid_angle);
+    SobolSampler sampler(9);
+    double mean_chi2 = 0;
+    for (int pixel = 0; pixel < kPixels; ++pixel) {
+      std::vector<double> counts(16);
+      for (int i = 0; i < kSamples; ++i) {
+        sampler.start_pixel_sample(pixel, 7, uint64_t(i));
+        const VertexSamples draws = sampler.next_vertex();
+        const EmitterSample s = emitters.sample(ref, Vec3(), draws.light_spare, draws.light_point);
+        ASSERT_GT(s.pdf, 0.0f);
+        const int x = std::clamp(int((s.p.x - c.x) / u.x * 4), 0, 3), y = std::clamp(int((s.p.y - c.y) / v.y * 4), 0, 3);
+        counts[size_t(4 * y + x)] += 1;
+      }
+      mean_chi2 += chi2(counts, expected) / kPixels;
+    }
+    EXPECT_LT(mean_chi2, 15.0 / 2) << "ref z " << ref.z;
+    std::printf("ref z %g: mean chi-square %.3f\n", double(ref.z), mean_chi2);
   }
 }
 

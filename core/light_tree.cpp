@@ -293,7 +293,7 @@ std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) co
   const double below = slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1];
   const double share = slot_cdf_[size_t(slot)] - below;
   u = share > 0 ? static_cast<float>(std::clamp((double(u) - below) / share, 0.0, double(kOneMinusEpsilon))) : 0.0f;
-  return {slot, slot_probability(first, slot)};
+  return {slot, static_cast<float>(share)};  // slot_probability(first, slot)
 }
 
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {

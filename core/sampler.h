@@ -12,11 +12,11 @@ namespace prism {
 
 // The draws a path tracer makes at each vertex of a path, in the order a sampler hands them out.
 struct VertexSamples {
-  float light_spare = 0;  // for the light sample where light_point.x runs short (1D): Emitters::sample
-  Vec2 light_point;      // where on it (2D)
-  float lobe = 0;        // which BSDF lobe (1D)
-  Vec2 direction;        // the scattered direction (2D)
-  float roulette = 0;    // Russian roulette (1D)
+  float light_spare = 0;  // places the light point where light_point.x runs short (1D): Emitters::sample
+  Vec2 light_point;       // which light, and where on it (2D)
+  float lobe = 0;         // which BSDF lobe (1D)
+  Vec2 direction;         // the scattered direction (2D)
+  float roulette = 0;     // Russian roulette (1D)
 };
 
 class Sampler {

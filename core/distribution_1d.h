@@ -5,7 +5,16 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/constants.h"
+
 namespace prism {
+
+// u in [start, start + width) rescaled to [0, 1), so that one sample dimension can be reused after
+// it has chosen the interval; 0 for an empty interval.
+inline float rescale_to_unit(float u, double start, double width) {
+  const double r = width > 0 ? (u - start) / width : 0.0;
+  return static_cast<float>(std::clamp(r, 0.0, static_cast<double>(kOneMinusEpsilon)));
+}
 
 class Distribution1D {
  public:
@@ -38,11 +47,7 @@ class Distribution1D {
     const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
     size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(0, (it - cdf_.begin()) - 1));
     i = std::min(i, size() - 1);  // cdf[i] <= u < cdf[i+1], so item i has weight > 0
-    if (remapped) {
-      const double width = cdf_[i + 1] - cdf_[i];
-      const double r = width > 0 ? (u - cdf_[i]) / width : 0.0;
-      *remapped = static_cast<float>(std::clamp(r, 0.0, static_cast<double>(0x1.fffffep-1f)));
-    }
+    if (remapped) *remapped = rescale_to_unit(u, cdf_[i], cdf_[i + 1] - cdf_[i]);
     return i;
   }
 

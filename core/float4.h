@@ -28,11 +28,6 @@ struct Float4 {
   Float4() : v(_mm_setzero_ps()) {}
   explicit Float4(float x) : v(_mm_set1_ps(x)) {}
   explicit Float4(__m128 x) : v(x) {}
-  float lane(int k) const {
-    alignas(16) float out[4];
-    _mm_store_ps(out, v);
-    return out[k];
-  }
   void set_lane(int k, float x) {
     alignas(16) float lanes[4];
     _mm_store_ps(lanes, v);
@@ -69,7 +64,6 @@ struct Float4 {
   float v[4] = {};
   Float4() = default;
   explicit Float4(float x) : v{x, x, x, x} {}
-  float lane(int k) const { return v[k]; }
   void set_lane(int k, float x) { v[k] = x; }
   void store(float* out) const {
     for (int k = 0; k < 4; ++k) out[k] = v[k];

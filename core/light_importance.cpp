@@ -24,10 +24,6 @@ LightImportance::LightImportance(const LightBounds& b, double power_scale) {
   terms_.power = b.power > 0 ? static_cast<float>(b.power * power_scale) : 0.0f;
 }
 
-LightImportance4::LightImportance4() {
-  for (int k = 0; k < 4; ++k) set(k, LightImportance());
-}
-
 void LightImportance4::set(int lane, const LightImportance& group) {
   const ImportanceTerms<float>& t = group.terms();
   ImportanceTerms<Float4>& l = terms_;

@@ -89,7 +89,7 @@ class LightImportance {
 // Four groups judged at once; lane k gives what the LightImportance set there gives, bit for bit.
 class LightImportance4 {
  public:
-  LightImportance4();  // every lane without power
+  LightImportance4() = default;  // every lane as LightImportance(): no power
   void set(int lane, const LightImportance& group);
   void evaluate(const Vec3& p, const Vec3& n, float out[4]) const { importance_at(terms_, p, n).store(out); }
 

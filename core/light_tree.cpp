@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/distribution_1d.h"
+
 namespace prism {
 namespace {
 
@@ -16,7 +18,6 @@ constexpr int kMaxSahDepth = 48;
 // which still shapes every subtree below this size. Only emissive meshes of tens of thousands of
 // triangles reach it; its effect on their noise is not measured (docs/PERFORMANCE.md).
 constexpr size_t kMaxSahLights = 16384;
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 float surface_area(const Bounds3& b) {
   const Vec3 d = b.diagonal();
@@ -290,10 +291,9 @@ std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) co
   // The first slot whose cumulative share exceeds u; the last one's is 1, above every u.
   const auto begin = slot_cdf_.begin() + first, last = begin + (count - 1);
   const int slot = static_cast<int>(std::upper_bound(begin, last, double(u)) - slot_cdf_.begin());
-  const double below = slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1];
-  const double share = slot_cdf_[size_t(slot)] - below;
-  u = share > 0 ? static_cast<float>(std::clamp((double(u) - below) / share, 0.0, double(kOneMinusEpsilon))) : 0.0f;
-  return {slot, static_cast<float>(share)};  // slot_probability(first, slot)
+  const double below = slot_start(first, slot), share = slot_cdf_[size_t(slot)] - below;
+  u = rescale_to_unit(u, below, share);
+  return {slot, static_cast<float>(share)};
 }
 
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {

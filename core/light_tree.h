@@ -60,9 +60,11 @@ class LightTree {
   // Picks among lights [first, first + count) by power; returns the slot and its probability,
   // and rescales u to [0, 1) within the slot's share.
   std::pair<int, float> pick_in_leaf(int first, int count, float& u) const;
+  // Where `slot`'s share begins in the cumulative shares of the leaf that starts at `first`.
+  double slot_start(int first, int slot) const { return slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1]; }
   // The share of `slot` among the lights of the leaf that starts at `first`, which holds it.
   float slot_probability(int first, int slot) const {
-    return static_cast<float>(slot_cdf_[size_t(slot)] - (slot == first ? 0.0 : slot_cdf_[size_t(slot) - 1]));
+    return static_cast<float>(slot_cdf_[size_t(slot)] - slot_start(first, slot));
   }
   // The children's importance at (p, n) and their sum (not positive when none can light p).
   float judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "core/constants.h"
 #include "core/face_normal.h"
@@ -155,7 +156,7 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
     }
     b.power = power[i] > 0 && std::isfinite(power[i]) ? power[i] : 0.0;
   }
-  tree_ = LightTree(bounded);
+  tree_ = LightTree(std::move(bounded));
   top_power[0] = tree_.power();
   top_ = Distribution1D(top_power);
 }

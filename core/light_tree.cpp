@@ -113,7 +113,7 @@ struct LightTree::BuildItem {
   int item;
 };
 
-LightTree::LightTree(const std::vector<LightBounds>& items) {
+LightTree::LightTree(std::vector<LightBounds> items) {
   slot_of_.assign(items.size(), -1);
   std::vector<BuildItem> lights;
   lights.reserve(items.size());
@@ -122,24 +122,24 @@ LightTree::LightTree(const std::vector<LightBounds>& items) {
       lights.push_back({items[k], items[k].box.center(), static_cast<int>(k)});
       power_ += items[k].power;
     }
+  // Each phase frees what the next does not read, so that for a million emissive triangles the
+  // build's peak holds two of its arrays, not four: the items once copied, the build's copies once
+  // the binary hierarchy holds their bounds, and the binary hierarchy once collapsed.
+  std::vector<LightBounds>().swap(items);
   if (lights.empty()) return;
   std::vector<BinaryNode> binary;
   binary.reserve(2 * lights.size() - 1);
   build(binary, lights, 0, lights.size(), 0);
-  // Each node stands for at least one interior binary node. Reserving that many touches no
-  // memory yet, and growing the vector instead would copy (and fault in) it several times. A
-  // root that is a leaf collapses to a node with that one child.
-  nodes_.reserve(std::max<size_t>(1, binary.size() / 2));
+  std::vector<BuildItem>().swap(lights);
+  // Counted first: growing the vector instead would copy (and fault in) it several times, and
+  // reserving a bound would hold address space (a node per interior binary node) it never uses.
+  groups_.reserve(count_groups(binary, 0));
   collapse(binary, 0);
 }
 
-int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
-  const int32_t index = static_cast<int32_t>(nodes_.size());
-  nodes_.emplace_back();
-  std::fill(std::begin(nodes_.back().next), std::end(nodes_.back().next), -1);
-  // Open b, then again and again the interior node of the most power among its descendants so
-  // far, until there are kWidth of them or all are leaves.
-  int kids[kWidth] = {b}, n = 1;
+int LightTree::open_node(const std::vector<BinaryNode>& binary, int b, int (&kids)[kWidth]) {
+  kids[0] = b;
+  int n = 1;
   while (n < kWidth) {
     int open = -1;
     for (int k = 0; k < n; ++k)
@@ -154,15 +154,33 @@ int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
   // In slot order (nodes are numbered depth first, like the slots): pmf() finds a slot's child by
   // walking the ranges in turn.
   std::sort(kids, kids + n);
-  nodes_[size_t(index)].children = n;
+  return n;
+}
+
+size_t LightTree::count_groups(const std::vector<BinaryNode>& binary, int b) {
+  int kids[kWidth];
+  const int n = open_node(binary, b, kids);
+  size_t count = size_t(groups_for(n));
+  for (int k = 0; k < n; ++k)
+    if (binary[size_t(kids[k])].right >= 0) count += count_groups(binary, kids[k]);
+  return count;
+}
+
+int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
+  int kids[kWidth];
+  const int n = open_node(binary, b, kids);
+  const int32_t index = static_cast<int32_t>(groups_.size());
+  groups_.resize(groups_.size() + size_t(groups_for(n)));
+  groups_[size_t(index)].children = n;
   for (int k = 0; k < n; ++k) {
     const BinaryNode& kid = binary[size_t(kids[k])];
-    const int32_t next = kid.right >= 0 ? collapse(binary, kids[k]) : -1;  // may move nodes_
-    Node& node = nodes_[size_t(index)];
-    node.importance[k / 4].set(k % 4, kid.importance);
-    node.next[k] = next;
-    node.first[k] = kid.first;
-    node.count[k] = kid.count;
+    const int32_t next = kid.right >= 0 ? collapse(binary, kids[k]) : -1;  // may move groups_
+    Group& group = groups_[size_t(index + k / kLanes)];
+    const int lane = k % kLanes;
+    group.importance.set(lane, kid.importance);
+    group.next[lane] = next;
+    group.first[lane] = kid.first;
+    group.count[lane] = kid.count;
   }
   return index;
 }
@@ -276,12 +294,12 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
   return all;
 }
 
-float LightTree::judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
-  // All of them, unused ones too (they come to 0), four at a time; summed pairwise.
+float LightTree::judge(int node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
+  // Four at a time, unused lanes too (they come to 0); summed pairwise.
   float sum = 0;
-  for (int g = 0; g < kGroups; ++g) {
-    float* four = importance + 4 * g;
-    node.importance[g].evaluate(p, n, four);
+  for (int g = 0; g < groups_for(groups_[size_t(node)].children); ++g) {
+    float* four = importance + kLanes * g;
+    groups_[size_t(node + g)].importance.evaluate(p, n, four);
     sum += (four[0] + four[1]) + (four[2] + four[3]);
   }
   return sum;
@@ -297,24 +315,24 @@ std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) co
 }
 
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {
-  if (nodes_.empty()) return std::nullopt;
+  if (groups_.empty()) return std::nullopt;
   int index = 0;
   float pmf = 1.0f;
   for (;;) {
-    const Node& node = nodes_[size_t(index)];
+    const int children = groups_[size_t(index)].children;
     int k = 0;
     // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in
     // sampling by power; what cannot reach p then contributes nothing.
-    if (node.children > 1) {
+    if (children > 1) {
       float importance[kWidth];
-      const float sum = judge(node, p, n, importance);
+      const float sum = judge(index, p, n, importance);
       if (!(sum > 0)) return std::nullopt;
       // The child whose share of [0, sum) holds u * sum; children of importance 0 are skipped,
       // rounding cannot land on them.
       const float target = u * sum;
       float below = 0;
       int last = 0;
-      for (int c = 0; c < node.children; ++c)
+      for (int c = 0; c < children; ++c)
         if (importance[c] > 0) last = c;
       k = last;
       for (int c = 0; c < last; ++c) {
@@ -327,11 +345,13 @@ std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, f
       u = std::clamp((target - below) / importance[k], 0.0f, kOneMinusEpsilon);
       pmf *= importance[k] / sum;
     }
-    if (node.next[k] < 0) {
-      const auto [slot, share] = pick_in_leaf(node.first[k], node.count[k], u);
+    const Group& group = group_of(index, k);
+    const int lane = k % kLanes;
+    if (group.next[lane] < 0) {
+      const auto [slot, share] = pick_in_leaf(group.first[lane], group.count[lane], u);
       return Pick{slot_item_[size_t(slot)], pmf * share, u};
     }
-    index = node.next[k];
+    index = group.next[lane];
   }
 }
 
@@ -342,17 +362,18 @@ float LightTree::pmf(int item, const Vec3& p, const Vec3& n) const {
   int index = 0;
   float pmf = 1.0f;
   for (;;) {
-    const Node& node = nodes_[size_t(index)];
     int k = 0;
-    while (slot >= node.first[k] + node.count[k]) ++k;
-    if (node.children > 1) {
+    while (slot >= group_of(index, k).first[k % kLanes] + group_of(index, k).count[k % kLanes]) ++k;
+    if (groups_[size_t(index)].children > 1) {
       float importance[kWidth];
-      const float sum = judge(node, p, n, importance);
+      const float sum = judge(index, p, n, importance);
       if (!(sum > 0) || !(importance[k] > 0)) return 0;
       pmf *= importance[k] / sum;
     }
-    if (node.next[k] < 0) return pmf * slot_probability(node.first[k], slot);
-    index = node.next[k];
+    const Group& group = group_of(index, k);
+    const int lane = k % kLanes;
+    if (group.next[lane] < 0) return pmf * slot_probability(group.first[lane], slot);
+    index = group.next[lane];
   }
 }
 

@@ -14,10 +14,11 @@ namespace prism {
 class LightTree {
  public:
   LightTree() = default;
-  // items[k] bounds light k; lights without power are left out (never picked, pmf 0).
-  explicit LightTree(const std::vector<LightBounds>& items);
+  // items[k] bounds light k; lights without power are left out (never picked, pmf 0). Taken by
+  // value so that a caller can move them in: they are freed as soon as the build has copied them.
+  explicit LightTree(std::vector<LightBounds> items);
 
-  bool empty() const { return nodes_.empty(); }
+  bool empty() const { return groups_.empty(); }
   double power() const { return power_; }
 
   struct Pick {
@@ -30,7 +31,7 @@ class LightTree {
   std::optional<Pick> sample(const Vec3& p, const Vec3& n, float u) const;
   // The probability that sample(p, n, .) picks `item`.
   float pmf(int item, const Vec3& p, const Vec3& n) const;
-  // Of the binary hierarchy as built; the walk takes about a third as many steps (see Node).
+  // Of the binary hierarchy as built; the walk takes about a third as many steps (see Group).
   int depth() const { return depth_; }
 
  private:
@@ -40,22 +41,35 @@ class LightTree {
   // which on a tree of a million lights means fewer cache misses, and the children are judged
   // four at a time in SIMD lanes. Eight children cost what four did and choose better
   // (docs/PERFORMANCE.md, "SIMD importance").
+  //
+  // A node is stored as its children's groups of four, one after another: one group when it has
+  // up to four children, two when more. Most nodes near the leaves have two to four (the binary
+  // depth left over below the last full level), so this halves what they take, and their walk
+  // judges the one group only.
   static constexpr int kWidth = 8;
-  static constexpr int kGroups = kWidth / 4;  // of four children, judged in one pass of SIMD lanes
-  struct Node {
-    LightImportance4 importance[kGroups];  // unused children have no power: importance 0
-    int32_t next[kWidth];                  // a child's node, or -1 for a leaf
-    int32_t first[kWidth] = {};  // a child's lights are slots first .. first + count - 1
-    int32_t count[kWidth] = {};
-    int32_t children = 0;        // 1 only for a root that is a leaf: it is not judged
+  static constexpr int kLanes = 4;  // children in a group, judged in one pass of SIMD lanes
+  struct Group {
+    LightImportance4 importance;               // unused lanes have no power: importance 0
+    int32_t next[kLanes] = {-1, -1, -1, -1};  // a child's node (its first group), or -1 for a leaf
+    int32_t first[kLanes] = {};               // a child's lights are slots first .. first + count - 1
+    int32_t count[kLanes] = {};
+    int32_t children = 0;  // of the node, in its first group; 1 only for a root that is a leaf (not judged)
   };
+  static int groups_for(int children) { return (children + kLanes - 1) / kLanes; }
+  // Child k of the node whose first group is `node`: its group, and its lane there.
+  const Group& group_of(int node, int k) const { return groups_[size_t(node + k / kLanes)]; }
   struct BinaryNode;
   struct BuildItem;
   // Builds the binary subtree over lights[begin, end) as binary.size(); returns its bounds.
   LightBounds build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin, size_t end,
                     int depth);
-  // Makes up to kWidth descendants of binary node b (the most powerful interior ones opened first)
-  // the children of a new node, in slot order; returns its index.
+  // The descendants of binary node b that become the children of its node: b opened, then the most
+  // powerful interior one among them again and again, until there are kWidth or all are leaves.
+  // Returns how many, in kids, in slot order.
+  static int open_node(const std::vector<BinaryNode>& binary, int b, int (&kids)[kWidth]);
+  // How many groups collapse(binary, b) makes.
+  static size_t count_groups(const std::vector<BinaryNode>& binary, int b);
+  // Makes the open_node descendants of binary node b the children of a new node; returns its first group.
   int32_t collapse(const std::vector<BinaryNode>& binary, int b);
   // Picks among lights [first, first + count) by power; returns the slot and its probability,
   // and rescales u to [0, 1) within the slot's share.
@@ -67,9 +81,9 @@ class LightTree {
     return static_cast<float>(slot_cdf_[size_t(slot)] - slot_start(first, slot));
   }
   // The children's importance at (p, n) and their sum (not positive when none can light p).
-  float judge(const Node& node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
+  float judge(int node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
 
-  std::vector<Node> nodes_;       // the root first
+  std::vector<Group> groups_;     // the nodes' groups, the root's first
   std::vector<int32_t> slot_of_;  // item -> its slot, or -1
   // Per slot: the light, and the cumulative share of its leaf's power up to and including it (1
   // for the leaf's last).

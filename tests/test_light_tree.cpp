@@ -186,6 +186,41 @@ TEST(LightTree, IsNotBuiltWhenLightsAreChosenByPower) {
   }
 }
 
+// A node is stored as one group of four children or two: sets of 1 to 20 lights give roots of
+// every width, some with interior children. In each, every pick reports the pmf that pmf() gives,
+// and the picks of a fine stratified sweep of u land on each light in proportion to its pmf.
+TEST(LightTree, NodesOfEveryWidthMatchTheirPmf) {
+  Pcg32 rng(11, 12);
+  for (int count = 1; count <= 20; ++count) {
+    SCOPED_TRACE(::testing::Message() << count << " lights");
+    std::vector<LightBounds> lights = mixed_lights(rng, std::max(count, 4));
+    lights.resize(size_t(count));
+    for (LightBounds& b : lights) b.power = std::max(b.power, 1e-3);  // none black here
+    const LightTree tree(lights);
+    ASSERT_FALSE(tree.empty());
+    for (int point = 0; point < 4; ++point) {
+      const Vec3 p = random_in_box(rng, 7.0f);
+      const Vec3 n = point == 0 ? Vec3() : random_direction(rng);
+      std::vector<double> pmf(lights.size());
+      double total = 0;
+      for (size_t k = 0; k < lights.size(); ++k) total += pmf[k] = tree.pmf(int(k), p, n);
+      EXPECT_LE(total, 1.0 + 1e-5) << "point " << point;
+      constexpr int kSweep = 1 << 16;
+      std::vector<int> hits(lights.size(), 0);
+      for (int i = 0; i < kSweep; ++i) {
+        const auto pick = tree.sample(p, n, (float(i) + 0.5f) / kSweep);
+        if (!pick) continue;
+        ASSERT_NEAR(pick->pmf, pmf[size_t(pick->item)], 1e-5 * pmf[size_t(pick->item)]);
+        ++hits[size_t(pick->item)];
+      }
+      // A stratified sweep of u gives each light its share of the unit interval within a few
+      // strata for each node on its way down (a child's interval is one piece of its parent's).
+      for (size_t k = 0; k < lights.size(); ++k)
+        EXPECT_NEAR(hits[k], pmf[k] * kSweep, 8.0) << "light " << k << ", point " << point;
+    }
+  }
+}
+
 TEST(LightTree, HoldsUpOnDegenerateSets) {
   // Many lights alike: one leaf, chosen among by power.
   std::vector<LightBounds> same(100000);

@@ -43,8 +43,8 @@ class LightTree {
   // (docs/PERFORMANCE.md, "SIMD importance").
   //
   // A node is stored as its children's groups of four, one after another: one group when it has
-  // up to four children, two when more. Most nodes near the leaves have two to four (the binary
-  // depth left over below the last full level), so this halves what they take, and their walk
+  // up to four children, two when more. A node with four or fewer (near the leaves, where the
+  // binary subtree runs out of interior nodes to open) then takes half the memory, and its walk
   // judges the one group only.
   static constexpr int kWidth = 8;
   static constexpr int kLanes = 4;  // children in a group, judged in one pass of SIMD lanes
@@ -56,7 +56,7 @@ class LightTree {
     int32_t children = 0;  // of the node, in its first group; 1 only for a root that is a leaf (not judged)
   };
   static int groups_for(int children) { return (children + kLanes - 1) / kLanes; }
-  // Child k of the node whose first group is `node`: its group, and its lane there.
+  // The group holding child k of the node whose first group is `node` (in lane k % kLanes).
   const Group& group_of(int node, int k) const { return groups_[size_t(node + k / kLanes)]; }
   struct BinaryNode;
   struct BuildItem;

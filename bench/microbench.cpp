@@ -81,6 +81,28 @@ void BM_SamplerPath(benchmark::State& state) {
 BENCHMARK(BM_SamplerPath<IndependentSampler>)->Arg(0)->Arg(1);
 BENCHMARK(BM_SamplerPath<SobolSampler>)->Arg(0)->Arg(1);
 
+// A packet's worth of vertex draws: eight lanes' samplers, each at its own pixel, draw their next
+// vertex one after another, as the path tracer does at each bounce (time per packet, for 8 vertices).
+template <typename SamplerType>
+void BM_SamplerPacketVertices(benchmark::State& state) {
+  std::vector<SamplerType> lanes(8, SamplerType(7));
+  uint64_t i = 0;
+  for (auto _ : state) {
+    if (i % 4 == 0)  // a new sample every four bounces
+      for (int k = 0; k < 8; ++k) lanes[size_t(k)].start_pixel_sample(k, int((i >> 8) & 511), (i >> 2) & 63);
+    float sum = 0;
+    for (SamplerType& s : lanes) {
+      const VertexSamples v = s.next_vertex();
+      sum += v.light_spare + v.light_point.x + v.light_point.y + v.lobe + v.direction.x + v.direction.y + v.roulette;
+    }
+    benchmark::DoNotOptimize(sum);
+    ++i;
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * 8);  // vertices drawn
+}
+BENCHMARK(BM_SamplerPacketVertices<IndependentSampler>);
+BENCHMARK(BM_SamplerPacketVertices<SobolSampler>);
+
 // The glTF BSDF for a given material, at a fixed shading frame and outgoing direction.
 void bsdf_sample_benchmark(benchmark::State& state, const SurfaceParams& params) {
   Pcg32 rng(3, 4);

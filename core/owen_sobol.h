@@ -93,6 +93,20 @@ constexpr uint32_t sobol_dim1_reversed(uint32_t r) {
          kSobolDim1.table[3][r >> 24];
 }
 
+// The same as sobol_dim1_reversed(reverse_bits(i)), i.e. reverse_bits(sobol_dim1(i)), without
+// tables, for vector lanes. Index bit k adds row k of Pascal's triangle mod 2, and C(k, j) is odd
+// exactly when the bits of j are a subset of those of k (Lucas' theorem), so bit j of the result is
+// the XOR of the index bits k that are supersets of j: a superset transform over the five bits of
+// a bit position, one butterfly per bit.
+template <class U32>
+[[gnu::always_inline]] constexpr void reversed_sobol_dim1_in_place(U32& i) {
+  i ^= (i >> 1) & 0x55555555u;
+  i ^= (i >> 2) & 0x33333333u;
+  i ^= (i >> 4) & 0x0f0f0f0fu;
+  i ^= (i >> 8) & 0x00ff00ffu;
+  i ^= i >> 16;
+}
+
 // Reference forms, for tests: dimension 1 from its direction numbers, bit by bit.
 constexpr uint32_t sobol_dim1(uint32_t index) {
   uint32_t x = 0, v = 0x80000000u;

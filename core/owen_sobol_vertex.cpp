@@ -1,5 +1,7 @@
 #include "core/owen_sobol_vertex.h"
 
+#include <cstring>
+
 namespace prism {
 namespace {
 
@@ -12,19 +14,24 @@ typedef float F32x8 __attribute__((vector_size(32)));
 }  // namespace
 
 // Lanes 0-4 hold the five draws' first coordinates, lanes 5 and 6 the second coordinates of the
-// two 2D draws, lane 7 is idle. A 2D draw's second coordinate scrambles Sobol's dimension 1 of the
-// same shuffled index, which the tables give from the first coordinate's shuffled index.
-__attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, const SobolSeeds (&s)[5],
+// two 2D draws (dimensions 1 and 3), lane 7 is idle. A 2D draw's second coordinate scrambles
+// Sobol's dimension 1 of the same shuffled index, computed in the lanes from the first
+// coordinate's (reversed_sobol_dim1_in_place), so no lane leaves the vector until the end.
+__attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& s,
                                                      float (&u)[7]) {
-  const U32x8 index_seeds = {s[0].index, s[1].index, s[2].index, s[3].index, s[4].index, s[1].index, s[3].index, 0u};
+  U32x8 index, value0, value1;  // eight seeds from each array (unaligned loads)
+  std::memcpy(&index, s.index, sizeof index);
+  std::memcpy(&value0, s.value0, sizeof value0);
+  std::memcpy(&value1, s.value1, sizeof value1);
+  const U32x8 index_seeds = __builtin_shufflevector(index, index, 0, 1, 2, 3, 4, 1, 3, 7);
+  const U32x8 value_seeds = __builtin_shufflevector(value0, value1, 0, 1, 2, 3, 4, 9, 11, 7);
   U32x8 r = U32x8{} + reversed_index;
   laine_karras_permute_in_place(r, index_seeds);
   U32x8 w = r;
-  reverse_bits_in_place(w);
-  w[5] = sobol_dim1_reversed(r[1]);
-  w[6] = sobol_dim1_reversed(r[3]);
-  const U32x8 value_seeds = {s[0].value0, s[1].value0, s[2].value0, s[3].value0,
-                             s[4].value0, s[1].value1, s[3].value1, 0u};
+  reverse_bits_in_place(w);  // the shuffled indices i
+  U32x8 dim1 = w;
+  reversed_sobol_dim1_in_place(dim1);
+  w = __builtin_shufflevector(w, dim1, 0, 1, 2, 3, 4, 13, 14, 7);
   laine_karras_permute_in_place(w, value_seeds);
   reverse_bits_in_place(w);
   // fraction_to_float, lane by lane: the top 24 bits fit a signed lane exactly.

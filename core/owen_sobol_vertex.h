@@ -10,9 +10,18 @@ namespace prism {
 // Whether this CPU has AVX2, which owen_sobol_vertex needs.
 bool owen_sobol_vertex_available();
 
-// Draws 1D, 2D, 1D, 2D, 1D, the d-th with seeds[d], into u: the very values owen_sobol_1d and
-// owen_sobol_2d give, in that order, the seven coordinates scrambled together in the lanes of one
-// AVX2 vector. Call only where owen_sobol_vertex_available().
-void owen_sobol_vertex(uint32_t reversed_index, const SobolSeeds (&seeds)[5], float (&u)[7]);
+// The seeds of a run of dimensions in structure-of-arrays form, as owen_sobol_vertex loads them:
+// element d of each array belongs to dimension d of the run. Arrays are read eight elements at a
+// time, so each holds 8 readable elements past the last dimension used.
+struct SobolSeedArrays {
+  const uint32_t* index;
+  const uint32_t* value0;
+  const uint32_t* value1;
+};
+
+// Draws 1D, 2D, 1D, 2D, 1D, the d-th with the seeds of dimension d (0 <= d < 5) into u: the very
+// values owen_sobol_1d and owen_sobol_2d give, in that order, the seven coordinates scrambled
+// together in the lanes of one AVX2 vector. Call only where owen_sobol_vertex_available().
+void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& seeds, float (&u)[7]);
 
 }  // namespace prism

@@ -33,6 +33,22 @@ TEST(Sobol, TablesMatchTheDirectionNumbers) {
   for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dim1(i) * 0x1p-32, expected[i]) << i;
 }
 
+// The table-free form the AVX2 lanes use: every index bit alone, then random indices.
+TEST(Sobol, SupersetTransformMatchesTheDirectionNumbers) {
+  for (int k = 0; k < 32; ++k) {
+    uint32_t x = 1u << k;
+    reversed_sobol_dim1_in_place(x);
+    ASSERT_EQ(x, reverse_bits(sobol_dim1(1u << k))) << "index bit " << k;
+  }
+  Pcg32 rng(11, 12);
+  for (int i = 0; i < 10000; ++i) {
+    uint32_t x = rng.next_u32();
+    const uint32_t index = x;
+    reversed_sobol_dim1_in_place(x);
+    ASSERT_EQ(x, reverse_bits(sobol_dim1(index))) << index;
+  }
+}
+
 TEST(Sobol, PairedReversalReversesEachHalf) {
   Pcg32 rng(7, 8);
   for (int i = 0; i < 10000; ++i) {

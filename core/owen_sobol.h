@@ -97,7 +97,9 @@ constexpr uint32_t sobol_dim1_reversed(uint32_t r) {
 // tables, for vector lanes. Index bit k adds row k of Pascal's triangle mod 2, and C(k, j) is odd
 // exactly when the bits of j are a subset of those of k (Lucas' theorem), so bit j of the result is
 // the XOR of the index bits k that are supersets of j: a superset transform over the five bits of
-// a bit position, one butterfly per bit.
+// a bit position, one butterfly per bit. Scalar draws keep the tables, which read r in parallel
+// with its reversal: the transform's chain after it made one-at-a-time draws 5% slower
+// (BM_SamplerPath<SobolSampler>/0, 214 -> 225 ns).
 template <class U32>
 [[gnu::always_inline]] constexpr void reversed_sobol_dim1_in_place(U32& i) {
   i ^= (i >> 1) & 0x55555555u;

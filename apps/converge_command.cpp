@@ -47,17 +47,34 @@ std::vector<int> count_list(const std::string& text, const std::string& option, 
   return out;
 }
 
+// A comma-separated list of render-time budgets in seconds, sorted, each once.
+std::vector<double> duration_list(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& item : split_list(text)) out.push_back(duration_option("--times", item));
+  if (out.empty()) throw UsageError("--times: the list is empty");
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
+
+// The most samples a pixel may take under a --times budget: the budget, not this, ends the render.
+constexpr int kTimedSppCeiling = 1 << 24;
 
 struct Row {
   std::string setting;
-  int spp;
+  double spp;  // the mean over the pixels: a time budget leaves some pixels one pass ahead
   double seconds;
   ImageComparison error;
 };
 
 int converge(const ConvergeOptions& o) {
-  const std::vector<int> spps = count_list(o.spp, "--spp", "1,4,16,64");
+  // Either sample counts (one film carried through them) or time budgets (a render of its own each).
+  std::vector<int> spps;
+  std::vector<double> budgets;
+  if (o.times) budgets = duration_list(*o.times);
+  else spps = count_list(o.spp, "--spp", "1,4,16,64");
   // Russian roulette's start is compared besides sampler and integrator: it trades noise for time
   // without bias, so only a measurement can choose it (docs/PERFORMANCE.md).
   std::vector<int> rr_starts;  // empty: the render's own
@@ -133,26 +150,42 @@ int converge(const ConvergeOptions& o) {
         }
         PlotSeries series{integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : ""),
                           {}};
-        Film film(s.width, s.height);
-        double seconds = 0;
-        // Sample counts are prefixes of one sequence: each level continues the previous film.
-        for (int spp : spps) {
-          s.spp = spp;
-          seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+        auto measured = [&](double spp, double seconds, const Film& film) {
           Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
           const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
           if (!ro.quiet)
-            fmt::print("{:<20}{:>8}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
+            fmt::print("{:<20}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
                        row.error.all.rel_mse, efficiency);
           series.points.emplace_back(seconds, row.error.all.rel_mse);
           rows.push_back(row);
+        };
+        if (budgets.empty()) {
+          Film film(s.width, s.height);
+          double seconds = 0;
+          // Sample counts are prefixes of one sequence: each level continues the previous film.
+          for (int spp : spps) {
+            s.spp = spp;
+            seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+            measured(spp, seconds, film);
+          }
+        } else {
+          // Each budget is a render of its own, progressive passes until the time is spent, as
+          // `prism render --time` makes it: what a user with that much time gets.
+          for (double budget : budgets) {
+            RenderSettings timed = s;
+            timed.time_budget = budget;
+            timed.spp = kTimedSppCeiling;
+            Film film(s.width, s.height);
+            const RenderStats stats = render(*p.scene, camera, *integrator, timed, film);
+            measured(stats.spp_mean, stats.seconds, film);
+          }
         }
         plot.series.push_back(std::move(series));
       }
 
   std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
   for (const Row& r : rows)
-    csv += fmt::format("{},{},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
+    csv += fmt::format("{},{:.8g},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
                        r.error.all.rel_mse, 1.0 / (r.error.all.rel_mse * r.seconds));
   write_file_atomically(csv_path, csv);
   write_loglog_svg(svg_path, plot);
@@ -175,6 +208,10 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference prism renders (default 4096)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--spp", o.spp, "Sample counts to measure at, a comma-separated list (default 1,2,4,...,256)");
+  cmd->add_option("--times", o.times,
+                  "Render-time budgets to measure at instead, a comma-separated list such as 0.5s,1s,2s: each a "
+                  "render of its own under that budget (spp in the CSV is then the mean reached)")
+      ->excludes("--spp");
   cmd->add_option("--samplers", o.samplers, "Samplers to compare, comma-separated (default sobol,independent)");
   cmd->add_option("--integrators", o.integrators, "Integrators to compare, comma-separated (default path)");
   cmd->add_option("--res", o.render.resolution, "Image size WIDTHxHEIGHT (default: the reference's, else as render)");

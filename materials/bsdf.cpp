@@ -5,14 +5,7 @@
 
 namespace prism {
 
-Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta)
-    : metal_(p.base_color, p.roughness * p.roughness),
-      dielectric_(eta, p.roughness * p.roughness, p.base_color,
-                  p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume),
-      coat_(eta, p.roughness * p.roughness, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly),
-      diffuse_{p.base_color} {
-  coat_.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
-  dielectric_.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
+Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta) : diffuse_{p.base_color} {
   const bool volume_boundary = p.transmission > 0 && !p.thin_walled;
   const float side = dot(wo, ng);
   valid_ = side != 0;
@@ -46,14 +39,22 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
     if (wo_.z < 0) valid_ = false;  // only a volume boundary is seen from below
     return;
   }
+  // The other lobes are built only here: a plain diffuse surface does not pay for them.
+  const float alpha = p.roughness * p.roughness;
+  metal_.emplace(p.base_color, alpha);
+  dielectric_.emplace(eta, alpha, p.base_color,
+                      p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume);
+  coat_.emplace(eta, alpha, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly);
+  coat_->set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
+  dielectric_->set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
   // glTF's fresnel_mix: the layer reflects F (per channel), the base below gets 1 - max(F).
-  const Rgb F = m < 1 && t < 1 ? coat_.reflectance_rgb(wo_.z) : Rgb(0.0f);
+  const Rgb F = m < 1 && t < 1 ? coat_->reflectance_rgb(wo_.z) : Rgb(0.0f);
   weight_[kMetal] = m;
   weight_[kDielectric] = (1 - m) * t;
   weight_[kCoat] = (1 - m) * (1 - t);
   weight_[kDiffuse] = (1 - m) * (1 - t) * std::max(0.0f, 1 - max_component(F));
   // Choose lobes by their albedo estimate at wo.
-  float pick[kLobes] = {m > 0 ? m * std::max(luminance(metal_.reflectance(wo_.z)), 0.05f) : 0.0f, weight_[kDielectric],
+  float pick[kLobes] = {m > 0 ? m * std::max(luminance(metal_->reflectance(wo_.z)), 0.05f) : 0.0f, weight_[kDielectric],
                         weight_[kCoat] * luminance(F), weight_[kDiffuse] * std::max(luminance(p.base_color), 0.05f)};
   if (wo_.z < 0) pick[kMetal] = pick[kCoat] = pick[kDiffuse] = 0;  // only a volume boundary is seen from below
   float total = 0;
@@ -74,27 +75,27 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
 
 bool Bsdf::lobe_is_delta(int lobe) const {
   switch (lobe) {
-    case kMetal: return metal_.is_delta();
-    case kDielectric: return dielectric_.is_delta();
-    case kCoat: return coat_.is_delta();
+    case kMetal: return metal_->is_delta();
+    case kDielectric: return dielectric_->is_delta();
+    case kCoat: return coat_->is_delta();
     default: return false;
   }
 }
 
 Rgb Bsdf::lobe_f(int lobe, const Vec3& wi) const {
   switch (lobe) {
-    case kMetal: return metal_.f(wo_, wi);
-    case kDielectric: return dielectric_.f(wo_, wi);
-    case kCoat: return coat_.f(wo_, wi);
+    case kMetal: return metal_->f(wo_, wi);
+    case kDielectric: return dielectric_->f(wo_, wi);
+    case kCoat: return coat_->f(wo_, wi);
     default: return wi.z > 0 && wo_.z > 0 ? diffuse_.f() : Rgb{};
   }
 }
 
 float Bsdf::lobe_pdf(int lobe, const Vec3& wi) const {
   switch (lobe) {
-    case kMetal: return metal_.pdf(wo_, wi);
-    case kDielectric: return dielectric_.pdf(wo_, wi);
-    case kCoat: return coat_.pdf(wo_, wi);
+    case kMetal: return metal_->pdf(wo_, wi);
+    case kDielectric: return dielectric_->pdf(wo_, wi);
+    case kCoat: return coat_->pdf(wo_, wi);
     default: return wi.z > 0 && wo_.z > 0 ? Lambertian::pdf(wi) : 0.0f;
   }
 }
@@ -149,9 +150,9 @@ std::optional<BsdfSample> Bsdf::sample(float u_lobe, Vec2 u) const {
 
   std::optional<BxdfSample> s;
   switch (lobe) {
-    case kMetal: s = metal_.sample(wo_, u); break;
-    case kDielectric: s = dielectric_.sample(wo_, u_inner, u); break;
-    case kCoat: s = coat_.sample(wo_, u_inner, u); break;
+    case kMetal: s = metal_->sample(wo_, u); break;
+    case kDielectric: s = dielectric_->sample(wo_, u_inner, u); break;
+    case kCoat: s = coat_->sample(wo_, u_inner, u); break;
     default:
       if (wo_.z > 0) s = BxdfSample{Lambertian::sample(u), diffuse_.f(), 0, false, false, 1};
       if (s) s->pdf = Lambertian::pdf(s->wi);

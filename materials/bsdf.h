@@ -62,8 +62,9 @@ class Bsdf {
   int only_lobe_ = -1;  // the single non-delta lobe that can be picked, if there is just one
   float weight_[kLobes] = {};
   float pick_[kLobes] = {};
-  ConductorBxdf metal_;
-  DielectricBxdf dielectric_, coat_;
+  // Built only when the mixture is more than the Lambertian lobe alone (lambertian_ false).
+  std::optional<ConductorBxdf> metal_;
+  std::optional<DielectricBxdf> dielectric_, coat_;
   Lambertian diffuse_;
   bool valid_ = true;
   bool lambertian_ = false;  // the Lambertian lobe alone: sample() skips the mixture

@@ -57,10 +57,41 @@ std::vector<double> duration_list(const std::string& text) {
   return out;
 }
 
+// A comma-separated list of relative-error targets in (0, 1], loosest first, each once.
+std::vector<double> noise_list(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& item : split_list(text)) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (*end != '\0' || !(v > 0 && v <= 1))
+      throw UsageError("--noise: expected a list of relative errors such as 0.05,0.02,0.01, got '" + text + "'");
+    out.push_back(v);
+  }
+  if (out.empty()) throw UsageError("--noise: the list is empty");
+  std::sort(out.begin(), out.end(), std::greater<>());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
 
-// The most samples a pixel may take under a --times budget: the budget, not this, ends the render.
+// The most samples a pixel may take under a --times budget (the budget, not this, ends the
+// render) and under a --noise target (as `prism render --noise` allows by default).
 constexpr int kTimedSppCeiling = 1 << 24;
+constexpr int kNoiseSppCeiling = 4096;
+
+// How a series spends its samples: one film through fixed counts, a render per time budget, or
+// a render per noise target (adaptive sampling).
+enum class Budget { Spp, Time, Noise };
+
+// What a series' name ends with when several kinds of budget are compared.
+const char* budget_suffix(Budget kind) {
+  switch (kind) {
+    case Budget::Spp: return "/spp";
+    case Budget::Time: return "/time";
+    default: return "/noise";
+  }
+}
 
 struct Row {
   std::string setting;
@@ -70,11 +101,16 @@ struct Row {
 };
 
 int converge(const ConvergeOptions& o) {
-  // Either sample counts (one film carried through them) or time budgets (a render of its own each).
-  std::vector<int> spps;
-  std::vector<double> budgets;
-  if (o.times) budgets = duration_list(*o.times);
-  else spps = count_list(o.spp, "--spp", "1,4,16,64");
+  // Sample counts (one film carried through them), time budgets and noise targets (a render of
+  // its own each): a series of each kind asked for, sample counts alone when nothing is.
+  const std::vector<double> budgets = o.times ? duration_list(*o.times) : std::vector<double>{};
+  const std::vector<double> targets = o.noise ? noise_list(*o.noise) : std::vector<double>{};
+  const bool by_spp = o.spp_given || (!o.times && !o.noise);
+  const std::vector<int> spps = by_spp ? count_list(o.spp, "--spp", "1,4,16,64") : std::vector<int>{};
+  std::vector<Budget> kinds;
+  if (by_spp) kinds.push_back(Budget::Spp);
+  if (o.times) kinds.push_back(Budget::Time);
+  if (o.noise) kinds.push_back(Budget::Noise);
   // Russian roulette's start is compared besides sampler and integrator: it trades noise for time
   // without bias, so only a measurement can choose it (docs/PERFORMANCE.md).
   std::vector<int> rr_starts;  // empty: the render's own
@@ -123,7 +159,7 @@ int converge(const ConvergeOptions& o) {
                               std::filesystem::path(p.scene_path).filename().string(), p.settings.width,
                               p.settings.height),
                   "render time (s)", "relMSE", {}};
-  if (!ro.quiet) fmt::print("{:<20}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
+  if (!ro.quiet) fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
   for (const std::string& integrator_name : integrators)
     for (const std::string& sampler : samplers)
       for (const int rr_start : rr_starts) {
@@ -148,39 +184,52 @@ int converge(const ConvergeOptions& o) {
             throw UsageError(e.what());
           }
         }
-        PlotSeries series{integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : ""),
-                          {}};
-        auto measured = [&](double spp, double seconds, const Film& film) {
-          Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
-          const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
-          if (!ro.quiet)
-            fmt::print("{:<20}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds, row.error.rmse,
-                       row.error.all.rel_mse, efficiency);
-          series.points.emplace_back(seconds, row.error.all.rel_mse);
-          rows.push_back(row);
-        };
-        if (budgets.empty()) {
-          Film film(s.width, s.height);
-          double seconds = 0;
-          // Sample counts are prefixes of one sequence: each level continues the previous film.
-          for (int spp : spps) {
-            s.spp = spp;
-            seconds += render(*p.scene, camera, *integrator, s, film).seconds;
-            measured(spp, seconds, film);
-          }
-        } else {
-          // Each budget is a render of its own, progressive passes until the time is spent, as
-          // `prism render --time` makes it: what a user with that much time gets.
-          for (double budget : budgets) {
-            RenderSettings timed = s;
-            timed.time_budget = budget;
-            timed.spp = kTimedSppCeiling;
+        const std::string base =
+            integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : "");
+        for (const Budget kind : kinds) {
+          PlotSeries series{base + (kinds.size() == 1 ? "" : budget_suffix(kind)), {}};
+          auto measured = [&](double spp, double seconds, const Film& film) {
+            Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
+            const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
+            if (!ro.quiet)
+              fmt::print("{:<24}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds,
+                         row.error.rmse, row.error.all.rel_mse, efficiency);
+            series.points.emplace_back(seconds, row.error.all.rel_mse);
+            rows.push_back(row);
+          };
+          // A render of its own under `budgeted`'s time budget or noise target: what a user who
+          // asks `prism render` for that budget gets.
+          auto render_budgeted = [&](const RenderSettings& budgeted) {
             Film film(s.width, s.height);
-            const RenderStats stats = render(*p.scene, camera, *integrator, timed, film);
+            const RenderStats stats = render(*p.scene, camera, *integrator, budgeted, film);
             measured(stats.spp_mean, stats.seconds, film);
+          };
+          if (kind == Budget::Spp) {
+            Film film(s.width, s.height);
+            double seconds = 0;
+            // Sample counts are prefixes of one sequence: each level continues the previous film.
+            for (int spp : spps) {
+              s.spp = spp;
+              seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+              measured(spp, seconds, film);
+            }
+          } else if (kind == Budget::Time) {
+            for (double budget : budgets) {
+              RenderSettings timed = s;
+              timed.time_budget = budget;
+              timed.spp = kTimedSppCeiling;
+              render_budgeted(timed);
+            }
+          } else {
+            for (double target : targets) {
+              RenderSettings adaptive = s;
+              adaptive.noise_target = target;
+              adaptive.spp = kNoiseSppCeiling;
+              render_budgeted(adaptive);
+            }
           }
+          plot.series.push_back(std::move(series));
         }
-        plot.series.push_back(std::move(series));
       }
 
   std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
@@ -207,11 +256,16 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
                   "Converged reference image (default: prism renders one at --reference-spp into the output folder)");
   cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference prism renders (default 4096)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--spp", o.spp, "Sample counts to measure at, a comma-separated list (default 1,2,4,...,256)");
+  cmd->add_option("--spp", o.spp,
+                  "Sample counts to measure at, a comma-separated list (default 1,2,4,...,256; measured when "
+                  "given, or when neither --times nor --noise is)")
+      ->each([&o](const std::string&) { o.spp_given = true; });
   cmd->add_option("--times", o.times,
-                  "Render-time budgets to measure at instead, a comma-separated list such as 0.5s,1s,2s: each a "
-                  "render of its own under that budget (spp in the CSV is then the mean reached)")
-      ->excludes("--spp");
+                  "Render-time budgets to measure at too, a comma-separated list such as 0.5s,1s,2s: each a render "
+                  "of its own under that budget, as --time makes it (spp in the CSV is then the mean reached)");
+  cmd->add_option("--noise", o.noise,
+                  "Noise targets to measure at too, a comma-separated list such as 0.05,0.02,0.01: each a render "
+                  "of its own with adaptive sampling, as --noise makes it (at most 4096 spp)");
   cmd->add_option("--samplers", o.samplers, "Samplers to compare, comma-separated (default sobol,independent)");
   cmd->add_option("--integrators", o.integrators, "Integrators to compare, comma-separated (default path)");
   cmd->add_option("--res", o.render.resolution, "Image size WIDTHxHEIGHT (default: the reference's, else as render)");

@@ -17,8 +17,9 @@ struct ConvergeOptions {
   std::optional<std::string> reference;  // rendered by prism at reference_spp when absent
   int reference_spp = 4096;
   std::string spp = "1,2,4,8,16,32,64,128,256";
-  // Render-time budgets to measure at instead of sample counts ("0.5s,1s,2s"): equal-time points.
-  std::optional<std::string> times;
+  bool spp_given = false;  // --spp on the command line: its series is measured beside --times and --noise
+  // Render-time budgets ("0.5s,1s,2s") and noise targets ("0.05,0.01") to measure at, each a series.
+  std::optional<std::string> times, noise;
   std::string samplers = "sobol,independent";
   std::string integrators = "path";
   std::optional<std::string> rr_start_depths;  // a list to compare; the render default when absent

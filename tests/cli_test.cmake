@@ -169,7 +169,8 @@ if(NOT rows MATCHES "path/sobol/rr2,2,.*path/sobol/rr5,2,")
 endif()
 run(2 "${PRISM}" converge "${box}" --rr-start-depths 0 -o "${WORK_DIR}/converge")
 expect_match("${last_err}" "--rr-start-depths: expected a list of counts" "unclear --rr-start-depths message")
-# Time budgets instead of sample counts: a render of its own per budget, its mean spp in the CSV.
+# Time budgets and noise targets: a render of its own per level, its mean spp in the CSV, a series
+# per kind of budget (named after it when there are several).
 run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.exr" --times 50ms,0.1s --samplers sobol
     -o "${WORK_DIR}/converge" -q)
 file(STRINGS "${WORK_DIR}/converge/convergence.csv" rows)
@@ -177,9 +178,16 @@ list(LENGTH rows row_count)
 if(NOT row_count EQUAL 3 OR NOT rows MATCHES "^setting,spp,seconds,rmse,relmse,efficiency;path/sobol,[0-9.]+,[0-9.]+,")
   message(FATAL_ERROR "converge --times rows: ${rows}")
 endif()
-run(2 "${PRISM}" converge "${box}" --times 1s --spp 4 -o "${WORK_DIR}/converge")
+run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.exr" --spp 16 --noise 0.5,0.2
+    --samplers independent -o "${WORK_DIR}/converge" -q)
+file(STRINGS "${WORK_DIR}/converge/convergence.csv" rows)
+if(NOT rows MATCHES ";path/independent/spp,16,[^;]*;path/independent/noise,[0-9.]+,[^;]*;path/independent/noise,")
+  message(FATAL_ERROR "converge --spp with --noise rows: ${rows}")
+endif()
 run(2 "${PRISM}" converge "${box}" --times 1s,soon -o "${WORK_DIR}/converge")
 expect_match("${last_err}" "--times: expected a duration such as 60, 30s" "unclear --times message")
+run(2 "${PRISM}" converge "${box}" --noise 0.01,2 -o "${WORK_DIR}/converge")
+expect_match("${last_err}" "--noise: expected a list of relative errors" "unclear --noise message")
 
 # bench: one line of figures per scene; a scene that fails is reported and fails the run.
 run(0 "${PRISM}" bench "${box}" --res 16x16 --spp 1)

@@ -116,6 +116,11 @@ int converge(const ConvergeOptions& o) {
   std::vector<int> rr_starts;  // empty: the render's own
   if (o.rr_start_depths) rr_starts = count_list(*o.rr_start_depths, "--rr-start-depths", "3,4,5");
   const std::vector<std::string> samplers = split_list(o.samplers), integrators = split_list(o.integrators);
+  const std::vector<std::string> allocations = split_list(o.allocations);
+  if (allocations.empty()) throw UsageError("--allocations needs at least one name");
+  for (const std::string& a : allocations)
+    if (a != "uniform" && a != "error")
+      throw UsageError("--allocations: expected uniform or error, got '" + a + "'");
   if (samplers.empty() || integrators.empty()) throw UsageError("--samplers and --integrators need at least one name");
   if (!std::filesystem::is_directory(o.output_dir))
     throw OutputError(o.output_dir, "the output folder does not exist");
@@ -162,11 +167,13 @@ int converge(const ConvergeOptions& o) {
   if (!ro.quiet) fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
   for (const std::string& integrator_name : integrators)
     for (const std::string& sampler : samplers)
-      for (const int rr_start : rr_starts) {
+      for (const int rr_start : rr_starts)
+      for (const std::string& allocation : allocations) {
         RenderSettings s = p.settings;
         s.integrator = integrator_name;
         s.sampler = sampler;
         s.rr_start_depth = rr_start;
+        s.allocation = allocation;
         std::unique_ptr<Integrator> integrator;
         try {
           integrator = make_integrator(s);
@@ -185,7 +192,8 @@ int converge(const ConvergeOptions& o) {
           }
         }
         const std::string base =
-            integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : "");
+            integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : "") +
+            (allocations.size() > 1 ? "/" + allocation : "");
         for (const Budget kind : kinds) {
           PlotSeries series{base + (kinds.size() == 1 ? "" : budget_suffix(kind)), {}};
           auto measured = [&](double spp, double seconds, const Film& film) {
@@ -221,6 +229,7 @@ int converge(const ConvergeOptions& o) {
               render_budgeted(timed);
             }
           } else {
+            if (allocation != "uniform") continue;  // a noise target shares samples by its own rule
             for (double target : targets) {
               RenderSettings adaptive = s;
               adaptive.noise_target = target;
@@ -266,6 +275,9 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--noise", o.noise,
                   "Noise targets to measure at too, a comma-separated list such as 0.05,0.02,0.01: each a render "
                   "of its own with adaptive sampling, as --noise makes it (at most 4096 spp)");
+  cmd->add_option("--allocations", o.allocations,
+                  "How samples are shared among pixels, comma-separated to compare (uniform, error; default uniform; "
+                  "series are named .../uniform and .../error when there are several)");
   cmd->add_option("--samplers", o.samplers, "Samplers to compare, comma-separated (default sobol,independent)");
   cmd->add_option("--integrators", o.integrators, "Integrators to compare, comma-separated (default path)");
   cmd->add_option("--res", o.render.resolution, "Image size WIDTHxHEIGHT (default: the reference's, else as render)");

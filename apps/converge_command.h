@@ -22,6 +22,7 @@ struct ConvergeOptions {
   std::optional<std::string> times, noise;
   std::string samplers = "sobol,independent";
   std::string integrators = "path";
+  std::string allocations = "uniform";  // RenderSettings::allocation values to compare
   std::optional<std::string> rr_start_depths;  // a list to compare; the render default when absent
   std::string output_dir = ".";
 };

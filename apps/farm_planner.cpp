@@ -98,11 +98,12 @@ FarmPlan make_farm_plan(const FarmPlanOptions& o) {
     if (s.crop != PixelWindow{} || parsed[i].settings.first_sample)
       throw UsageError(fmt::format("farm plan: {} {} is a slice already (\"crop\" or \"sample_range\"): plan the whole job",
                                    o.job, where));
-    if (s.time_budget > 0 || s.noise_target > 0)
+    if (s.time_budget > 0 || s.noise_target > 0 || s.allocation != "uniform")
       throw UsageError(fmt::format(
-          "farm plan --by {}: {} {} has a {} budget, whose samples depend on the machine and on the whole image; "
-          "split it by frames, or give it a fixed \"spp\"",
-          o.by, o.job, where, s.time_budget > 0 ? "time" : "noise"));
+          "farm plan --by {}: {} {} has a {}, whose samples depend on the machine and on the whole image; "
+          "split it by frames, or give it a fixed \"spp\" shared uniformly",
+          o.by, o.job, where,
+          s.time_budget > 0 ? "time budget" : s.noise_target > 0 ? "noise budget" : "sample allocation by error"));
     FarmOutput& out = plan.outputs.emplace_back();
     out = {i, where, *parsed[i].output, parsed[i].preview, {}};
     std::vector<std::optional<PixelWindow>> crops;

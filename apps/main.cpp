@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--sampler", render.settings.sampler,
                   "Sampler: sobol (default; Owen-scrambled Sobol, lower error) or independent (uniform random)");
+  cmd->add_option("--allocation", render.settings.allocation,
+                  "How samples are shared among pixels: uniform (default; each pixel the same) or error (after "
+                  "--min-spp each, in proportion to each pixel's estimated share of the image's relative MSE; "
+                  "--spp is then the mean, and with --time the passes are shared the same way)");
   cmd->add_option("--light-sampler", render.settings.light_sampler,
                   "How next-event estimation picks a light: tree (default; by each light's importance at the shading "
                   "point, from a light tree) or power (in proportion to emitted power, the same everywhere)");

@@ -54,8 +54,14 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
   }
   cli.apply_to(s);
   const bool sliced = !o.sample_range.empty() || (job && job->settings.first_sample);
-  if (sliced && (s.time_budget > 0 || s.noise_target > 0))
-    throw UsageError("a sample range renders a fixed slice of samples: it cannot be combined with --time or --noise");
+  if (sliced && (s.time_budget > 0 || s.noise_target > 0 || s.allocation != "uniform"))
+    throw UsageError(
+        "a sample range renders a fixed slice of samples: it cannot be combined with --time, --noise or --allocation "
+        "error");
+  if (s.allocation != "uniform" && s.allocation != "error")
+    throw UsageError("--allocation: expected uniform or error, got '" + s.allocation + "'");
+  if (s.allocation == "error" && s.noise_target > 0)
+    throw UsageError("--allocation error cannot be combined with --noise, which shares samples by its own rule");
   // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
   const bool spp_given = o.settings.spp || (job && job->settings.spp);
   if (!spp_given && s.time_budget > 0) s.spp = s.noise_target > 0 ? 4096 : (1 << 30);

@@ -24,7 +24,12 @@ struct RenderSettings {
   // Budgets beyond a fixed spp, stopping at whichever is met first (0 = not set):
   double time_budget = 0;      // seconds of rendering: progressive passes until spent
   double noise_target = 0;     // relative standard error per pixel: adaptive sampling
-  int min_spp = 16;            // samples every pixel gets before the noise target is judged
+  int min_spp = 16;            // samples every pixel gets before the noise target is judged, or
+                               // before samples are shared by error
+  // How a pass's samples are shared among pixels: "uniform" (the same count each) or "error" (in
+  // proportion to each pixel's estimated share of the relMSE, core/error_allocation.h; spp is then
+  // the mean).
+  std::string allocation = "uniform";
   uint64_t seed = 0;
   int tile_size = 16;
   int threads = 0;             // 0 = all hardware threads
@@ -46,7 +51,7 @@ struct RenderSettingsOverride {
   std::optional<float> clamp_indirect;
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
-  std::optional<std::string> camera, integrator, sampler, light_sampler;
+  std::optional<std::string> camera, integrator, sampler, light_sampler, allocation;
   std::optional<PixelWindow> crop;
   std::optional<uint64_t> first_sample;
   std::optional<AovSet> aovs;
@@ -65,6 +70,7 @@ struct RenderSettingsOverride {
     if (threads) s.threads = *threads;
     if (sampler) s.sampler = *sampler;
     if (light_sampler) s.light_sampler = *light_sampler;
+    if (allocation) s.allocation = *allocation;
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;
     if (integrator) s.integrator = *integrator;

@@ -1,7 +1,11 @@
 #include "core/sample_schedule.h"
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
+#include <stdexcept>
+
+#include "core/error_allocation.h"
 
 namespace prism {
 namespace {
@@ -20,9 +24,22 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
       time_budget_(settings.time_budget),
       pass_seconds_(settings.pass_seconds),
       noise_target_(settings.noise_target),
+      by_error_(settings.allocation == "error"),
       pixels_(size_t(width) * size_t(height)),
       expected_samples_(uint64_t(width) * height * max_spp_),
-      converged_(pixels_, 0) {}
+      converged_(pixels_, 0) {
+  if (settings.allocation != "uniform" && settings.allocation != "error")
+    throw std::invalid_argument("unknown allocation '" + settings.allocation + "' (known: uniform, error)");
+  if (by_error_ && noise_target_ > 0)
+    throw std::invalid_argument("a noise target allocates samples by its own rule: use --allocation uniform with it");
+  // Under a fixed spp, spp is every pixel's count; shared by error it is the mean, and no pixel
+  // takes more than kErrorAllocationCeiling times it.
+  if (by_error_ && time_budget_ <= 0) {
+    expected_samples_ = uint64_t(width) * height * max_spp_;
+    max_spp_ = uint32_t(std::min<uint64_t>(uint64_t(max_spp_) * kErrorAllocationCeiling, 1u << 30));
+    mean_spp_ = settings.spp;
+  }
+}
 
 void SampleSchedule::update_floor(const Film& film) {
   double sum = 0;
@@ -86,9 +103,10 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
     return wanted > 0;
   }
   if (passes_ == 1) {
-    // Every pixel first gets the minimum the noise estimate needs (one sample under a time budget
-    // alone, so the image is complete as soon as possible).
-    const uint32_t first = adaptive() ? min_spp_ : 1u;
+    // Every pixel first gets the minimum the noise estimate needs: min_spp for a noise target or
+    // for error allocation under a fixed spp, one sample under a time budget (the image is then
+    // complete as soon as possible; doubling passes bring it to min_spp before errors are judged).
+    const uint32_t first = adaptive() || (by_error_ && time_budget_ <= 0) ? min_spp_ : 1u;
     uint64_t wanted = 0;
     for (size_t i = 0; i < pixels_; ++i) {
       target[i] = std::max(counts[i], first);
@@ -100,6 +118,22 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
   }
 
   if (adaptive()) update_floor(film);
+  const uint64_t have = std::accumulate(counts.begin(), counts.end(), uint64_t(0));
+  if (by_error_ && *std::min_element(counts.begin(), counts.end()) >= std::min(min_spp_, max_spp_)) {
+    // Every pixel has its start: from here each pass doubles the film's samples (up to the mean
+    // spp's total, or what the time left affords) and shares them by estimated error.
+    uint64_t total = 2 * have;
+    if (time_budget_ > 0) {
+      const double remaining = time_budget_ - seconds;
+      const double affordable = remaining > 0 ? remaining / per_sample : 0;
+      total = have + uint64_t(std::min<double>(affordable, double(have)));
+      expected_samples_ = total;
+    } else {
+      total = std::min<uint64_t>(total, uint64_t(mean_spp_) * pixels_);
+    }
+    if (total <= have) return false;
+    return allocate_samples(counts, error_weights(film), total, max_spp_, target) > have;
+  }
   uint64_t wanted = 0;
   for (size_t i = 0; i < pixels_; ++i) {
     const uint32_t count = counts[i];

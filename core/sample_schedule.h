@@ -1,5 +1,5 @@
 // SampleSchedule: how many samples each pixel gets in each progressive pass, from the budgets
-// (fixed spp, wall-clock time, noise target) and the film's own noise estimates.
+// (fixed spp, wall-clock time, noise target), the allocation and the film's own noise estimates.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +21,9 @@ class SampleSchedule {
   bool next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target);
 
   bool adaptive() const { return noise_target_ > 0; }
-  bool progressive() const { return time_budget_ > 0 || noise_target_ > 0; }
+  // Samples shared by each pixel's estimated error (RenderSettings::allocation "error").
+  bool by_error() const { return by_error_; }
+  bool progressive() const { return time_budget_ > 0 || noise_target_ > 0 || by_error_; }
   int passes() const { return passes_; }
   // Samples a whole render is expected to take, for progress reports (an estimate under budgets).
   uint64_t expected_samples() const { return expected_samples_; }
@@ -34,11 +36,16 @@ class SampleSchedule {
   void update_floor(const Film& film);
 
  private:
+  // Shared by error under a fixed spp, no pixel takes more than this many times the mean spp.
+  static constexpr uint32_t kErrorAllocationCeiling = 16;
+
   uint32_t max_spp_;
   uint32_t min_spp_;
+  uint32_t mean_spp_ = 0;  // fixed spp shared by error: the mean each pass's total is capped by
   uint64_t cap_increments(const std::vector<uint32_t>& counts, std::vector<uint32_t>& target, double affordable) const;
 
   double time_budget_, pass_seconds_, noise_target_;
+  bool by_error_;
   size_t pixels_;
   int passes_ = 0;
   double floor_ = 1e-30;

@@ -34,6 +34,11 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
       if (s.aovs.has(Aov(i))) names += (names.empty() ? "" : ",") + aov_names()[i];
     a.push_back({"prism/aovs", names});
   }
+  // Written only when samples are shared by error, so files of uniform renders keep their bytes.
+  if (s.allocation != "uniform") {
+    a.push_back({"prism/allocation", s.allocation});
+    a.push_back({"prism/minSpp", s.min_spp});
+  }
   if (timed || adaptive) {
     a.push_back({"prism/sppLimit", s.spp});
     a.push_back({"prism/passes", stats.passes});
@@ -51,7 +56,7 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
   }
   if (adaptive) {
     a.push_back({"prism/noiseTarget", s.noise_target});
-    a.push_back({"prism/minSpp", s.min_spp});
+    if (s.allocation == "uniform") a.push_back({"prism/minSpp", s.min_spp});
     a.push_back({"prism/convergedFraction", stats.converged_fraction});
   }
   return a;

@@ -25,7 +25,8 @@ void check_same_render(const ExrImage& image, const std::string& path, const Exr
   static const char* keys[] = {"prism/aovs",          "prism/seed",         "prism/sampler",
                                "prism/integrator",    "prism/maxDepth",     "prism/maxDiffuseDepth",
                                "prism/rrStartDepth",  "prism/clampIndirect", "prism/scene",
-                               "prism/camera",        "prism/environment", "prism/lightSampler"};
+                               "prism/camera",        "prism/environment", "prism/lightSampler",
+                               "prism/allocation"};
   for (const char* key : keys) {
     const std::string mine = attribute_text(image, key), theirs = attribute_text(reference, key);
     if (mine != theirs)

@@ -39,6 +39,20 @@ inline CameraDesc furnace_camera(const Vec3& eye = Vec3(0.1f)) {
   return cam;
 }
 
+// The furnace box (emission 1, albedo 0.5) seen by furnace_camera, rendered with `settings`.
+struct FurnaceRender {
+  RenderStats stats;
+  Film film;
+};
+inline FurnaceRender render_furnace(const RenderSettings& settings) {
+  const Scene scene(furnace_box(1.0, 0.5));
+  FurnaceRender out{{}, Film(settings.width, settings.height)};
+  const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+  out.stats =
+      render(scene, Camera(furnace_camera(), settings.width, settings.height), integrator, settings, out.film);
+  return out;
+}
+
 // Renders a small image from inside the enclosure with each sampler; each pixel mean is an
 // independent estimate (pixels are scrambled independently), so the image mean's standard error
 // is the spread of pixel means over sqrt(pixels).

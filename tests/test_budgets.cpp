@@ -17,19 +17,8 @@ namespace {
 
 constexpr int kDepth = 4;
 
-struct FurnaceRender {
-  RenderStats stats;
-  Film film;
-};
-
-FurnaceRender render_furnace(const RenderSettings& settings) {
-  const Scene scene(test::furnace_box(1.0, 0.5));
-  FurnaceRender out{{}, Film(settings.width, settings.height)};
-  const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
-  out.stats = render(scene, Camera(test::furnace_camera(), settings.width, settings.height), integrator, settings,
-                     out.film);
-  return out;
-}
+using test::FurnaceRender;
+using test::render_furnace;
 
 RenderSettings furnace_settings() {
   RenderSettings s;

@@ -1,0 +1,200 @@
+// Error allocation: samples shared by each pixel's estimated share of the relMSE reach their
+// total exactly, follow the weights, never depend on a pixel's own samples, and keep renders
+// deterministic and unbiased.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "core/camera.h"
+#include "core/error_allocation.h"
+#include "core/image_metrics.h"
+#include "core/pcg32.h"
+#include "core/renderer.h"
+#include "core/sample_schedule.h"
+#include "core/scene.h"
+#include "furnace_scene.h"
+#include "integrators/path_integrator.h"
+
+namespace prism {
+namespace {
+
+uint64_t sum(const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), uint64_t(0)); }
+
+TEST(AllocateSamples, SharesTheTotalInProportionToTheWeights) {
+  std::vector<uint32_t> target;
+  const uint64_t total = allocate_samples({0, 0, 0, 0}, {1, 2, 3, 4}, 1000, 1u << 20, target);
+  EXPECT_EQ(total, 1000u);
+  EXPECT_EQ(target, (std::vector<uint32_t>{100, 200, 300, 400}));
+}
+
+TEST(AllocateSamples, NeverTakesSamplesAwayAndFillsTheRestByWeight) {
+  std::vector<uint32_t> target;
+  // The first pixel already has more than its share: it keeps its count, the others share the rest.
+  const std::vector<uint32_t> counts{500, 10, 10, 10};
+  EXPECT_EQ(allocate_samples(counts, {1, 1, 1, 2}, 900, 1u << 20, target), 900u);
+  EXPECT_EQ(target[0], 500u);
+  EXPECT_EQ(target[1], 100u);
+  EXPECT_EQ(target[2], 100u);
+  EXPECT_EQ(target[3], 200u);
+  // A total below what the pixels hold already leaves every count as it is.
+  EXPECT_EQ(allocate_samples(counts, {1, 1, 1, 1}, 100, 1u << 20, target), sum(counts));
+  EXPECT_EQ(target, counts);
+}
+
+TEST(AllocateSamples, RespectsTheCeilingAndRoundsToTheExactTotal) {
+  std::vector<uint32_t> target;
+  EXPECT_EQ(allocate_samples({1, 1, 1}, {100, 1, 1}, 30, 12, target), 30u);
+  EXPECT_EQ(target[0], 12u);
+  EXPECT_EQ(target[1] + target[2], 18u);
+  // Three equal weights and 10 samples: 3 each, and the one left over to the lowest index.
+  EXPECT_EQ(allocate_samples({0, 0, 0}, {1, 1, 1}, 10, 100, target), 10u);
+  EXPECT_EQ(target, (std::vector<uint32_t>{4, 3, 3}));
+  // Ceilings everywhere below the total: every pixel at its ceiling.
+  EXPECT_EQ(allocate_samples({0, 0}, {1, 3}, 100, 7, target), 14u);
+  EXPECT_EQ(target, (std::vector<uint32_t>{7, 7}));
+}
+
+TEST(AllocateSamples, ZeroWeightsKeepTheirCounts) {
+  std::vector<uint32_t> target;
+  EXPECT_EQ(allocate_samples({4, 4, 4}, {0, 1, 0}, 20, 1000, target), 20u);
+  EXPECT_EQ(target, (std::vector<uint32_t>{4, 12, 4}));
+}
+
+// A film whose pixel (x, y) holds samples v and v + 2 d (mean v + d, one-sample variance 2 d^2).
+Film two_sample_film(int width, int height, const std::vector<float>& d, float v = 0.5f) {
+  Film film(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float spread = d[size_t(y) * width + x];
+      film.add_sample(x, y, Rgb(v), 1);
+      film.add_sample(x, y, Rgb(v + 2 * spread), 1);
+    }
+  return film;
+}
+
+TEST(ErrorWeights, APixelsWeightComesFromItsNeighboursOnly) {
+  std::vector<float> d(9, 0.1f);
+  const std::vector<double> before = error_weights(two_sample_film(3, 3, d));
+  d[4] = 3.0f;  // the centre pixel's own samples change wildly
+  const std::vector<double> after = error_weights(two_sample_film(3, 3, d));
+  EXPECT_EQ(after[4], before[4]) << "the centre's weight must not see its own samples";
+  for (int i : {0, 1, 2, 3, 5, 6, 7, 8}) EXPECT_GT(after[i], before[i]) << "neighbour " << i;
+}
+
+TEST(ErrorWeights, WeightIsTheSquareRootOfTheNeighboursRelativeVariance) {
+  // Every pixel: mean m = 0.5 + d, one-sample variance 2 d^2 per channel, so
+  // R = 3 x 2 d^2 / (m^2 + epsilon) and each weight (all neighbours alike) is sqrt(R).
+  const float d = 0.25f;
+  const std::vector<double> w = error_weights(two_sample_film(4, 3, std::vector<float>(12, d)));
+  const double m = 0.5 + d;
+  const double expected = std::sqrt(3 * 2 * double(d) * d / (m * m + kRelMseEpsilon));
+  for (double wi : w) EXPECT_NEAR(wi, expected, 1e-6 * expected);
+}
+
+TEST(ErrorWeights, AFilmWithNoVarianceSeenGetsEqualWeights) {
+  const std::vector<double> w = error_weights(two_sample_film(5, 2, std::vector<float>(10, 0.0f)));
+  for (double wi : w) EXPECT_EQ(wi, 1.0);
+}
+
+// Pixels whose samples are 1 with probability 0.1 and 0 otherwise (a light seen through a small
+// gap: fireflies), sampled pass by pass as SampleSchedule plans under error allocation. Had a
+// pixel's own samples decided its count, pixels whose first samples all missed would stop early at
+// 0 while lucky ones would be pulled back down by more samples: the image mean would fall short of
+// 0.1. Judged by its neighbours, each pixel's count is blind to its own samples and the mean holds.
+TEST(ErrorAllocation, CountsBlindToAPixelsOwnSamplesKeepFireflyMeansUnbiased) {
+  constexpr int kSize = 48;
+  constexpr double kHit = 0.1;
+  RenderSettings s;
+  s.width = s.height = kSize;
+  s.spp = 64;
+  s.min_spp = 8;
+  s.allocation = "error";
+  SampleSchedule schedule(s, kSize, kSize);
+  Film film(kSize, kSize);
+  std::vector<uint32_t> target;
+  std::vector<Pcg32> streams;
+  for (int i = 0; i < kSize * kSize; ++i) streams.emplace_back(uint64_t(i), 77);
+  uint64_t samples = 0;
+  while (schedule.next_pass(film, 1.0, samples, target))
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (uint64_t n = film.sample_count(x, y); n < target[size_t(y) * kSize + x]; ++n, ++samples)
+          film.add_sample(x, y, Rgb(streams[size_t(y) * kSize + x].next_float() < kHit ? 1.0f : 0.0f), 1);
+  EXPECT_EQ(samples, uint64_t(s.spp) * kSize * kSize);
+  double mean = 0, variance = 0;
+  const double pixels = kSize * kSize;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      float rgba[4];
+      film.mean(x, y, rgba);
+      mean += rgba[0] / pixels;
+      variance += kHit * (1 - kHit) / double(film.sample_count(x, y)) / (pixels * pixels);  // exact, per pixel
+    }
+  EXPECT_LT(std::abs(mean - kHit), 4 * std::sqrt(variance)) << "image mean " << mean;
+}
+
+using test::FurnaceRender;
+using test::render_furnace;
+
+constexpr int kDepth = 4;
+
+RenderSettings shared_by_error() {
+  RenderSettings s;
+  s.width = s.height = 24;
+  s.max_depth = kDepth;
+  s.seed = 5;
+  s.spp = 48;
+  s.min_spp = 8;
+  s.allocation = "error";
+  return s;
+}
+
+TEST(ErrorAllocation, RenderTakesTheMeanSppExactlyAndDoesNotDependOnThreads) {
+  RenderSettings s = shared_by_error();
+  s.threads = 1;
+  const FurnaceRender one = render_furnace(s);
+  EXPECT_EQ(one.stats.samples, uint64_t(s.spp) * s.width * s.height);
+  EXPECT_GE(one.stats.spp_min, uint64_t(s.min_spp));
+  EXPECT_GT(one.stats.spp_max, one.stats.spp_min) << "the furnace's pixels differ in noise: their counts should too";
+  EXPECT_GT(one.stats.passes, 1);
+  s.threads = 2;
+  s.tile_size = 5;
+  const FurnaceRender two = render_furnace(s);
+  EXPECT_EQ(one.film.resolve_rgba(), two.film.resolve_rgba());
+  EXPECT_EQ(one.film.resolve_counts(), two.film.resolve_counts());
+}
+
+// The furnace's radiance is known: the image mean of a render shared by error must agree with it
+// within what the pixels' own variance estimates allow (four standard errors, fixed seeds).
+TEST(ErrorAllocation, FurnaceMeanIsUnbiased) {
+  const double truth = test::furnace_radiance(1.0, 0.5, kDepth);
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    RenderSettings s = shared_by_error();
+    s.seed = seed;
+    s.sampler = "independent";
+    const FurnaceRender r = render_furnace(s);
+    double mean = 0, variance = 0;
+    const int pixels = s.width * s.height;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        float rgba[4];
+        r.film.mean(x, y, rgba);
+        mean += rgba[1] / pixels;
+        variance += r.film.variance_of_mean(x, y)[1] / (double(pixels) * pixels);
+      }
+    EXPECT_LT(std::abs(mean - truth), 4 * std::sqrt(variance)) << "seed " << seed << ": mean " << mean;
+  }
+}
+
+TEST(ErrorAllocation, UnknownAllocationOrOneBesideANoiseTargetIsRefused) {
+  RenderSettings s = shared_by_error();
+  s.allocation = "greedy";
+  EXPECT_THROW(render_furnace(s), std::invalid_argument);
+  s.allocation = "error";
+  s.noise_target = 0.01;
+  EXPECT_THROW(render_furnace(s), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace prism

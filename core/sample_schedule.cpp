@@ -1,8 +1,8 @@
 #include "core/sample_schedule.h"
 
 #include <algorithm>
-#include <numeric>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/error_allocation.h"

@@ -21,8 +21,6 @@ class SampleSchedule {
   bool next_pass(const Film& film, double seconds, uint64_t samples, std::vector<uint32_t>& target);
 
   bool adaptive() const { return noise_target_ > 0; }
-  // Samples shared by each pixel's estimated error (RenderSettings::allocation "error").
-  bool by_error() const { return by_error_; }
   bool progressive() const { return time_budget_ > 0 || noise_target_ > 0 || by_error_; }
   int passes() const { return passes_; }
   // Samples a whole render is expected to take, for progress reports (an estimate under budgets).

@@ -156,5 +156,31 @@ TEST(Resume, AStoppedRenderContinuesToTheSameBits) {
   expect_same_film(continued, whole);
 }
 
+// Samples shared by error are planned pass by pass from the film: a render stopped between two
+// passes (where checkpoints are written), saved and continued plans the same passes and ends with
+// the bits of one render.
+TEST(Resume, ErrorAllocationStoppedBetweenPassesContinuesToTheSameBits) {
+  const Scene scene(test::aov_scene());
+  RenderSettings s = resume_settings();
+  s.allocation = "error";
+  s.min_spp = 4;
+  s.spp = 16;
+  Film whole = empty_film(scene, s);
+  const RenderStats one = render_into(scene, s, whole);
+  ASSERT_GE(one.passes, 3);
+  ASSERT_GT(one.spp_max, one.spp_min);
+
+  RenderProgress between;
+  Film stopped = empty_film(scene, s);
+  int passes = 0;
+  const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
+    if (++passes == 2) between.stop = true;
+  });
+  ASSERT_TRUE(stats.stopped);
+  Film resumed = through_exr(scene, stopped, test::make_temp_dir("resume-allocation") + "/between.exr");
+  render_into(scene, s, resumed);
+  expect_same_film(resumed, whole);
+}
+
 }  // namespace
 }  // namespace prism

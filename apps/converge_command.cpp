@@ -31,46 +31,46 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
-// A comma-separated list of positive counts, sorted, each once; `example` shows the form in errors.
+// The items of a comma-separated list, each read by `parse` (which throws a UsageError naming the
+// option), sorted by `order`, each once.
+template <typename T, typename Parse, typename Order = std::less<>>
+std::vector<T> parsed_list(const std::string& text, const std::string& option, Parse parse, Order order = {}) {
+  std::vector<T> out;
+  for (const std::string& item : split_list(text)) out.push_back(parse(item));
+  if (out.empty()) throw UsageError(option + ": the list is empty");
+  std::sort(out.begin(), out.end(), order);
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// A comma-separated list of positive counts, smallest first; `example` shows the form in errors.
 std::vector<int> count_list(const std::string& text, const std::string& option, const std::string& example) {
-  std::vector<int> out;
-  for (const std::string& item : split_list(text)) {
+  return parsed_list<int>(text, option, [&](const std::string& item) {
     char* end = nullptr;
     const long v = std::strtol(item.c_str(), &end, 10);
     if (*end != '\0' || v < 1 || v > (1 << 30))
       throw UsageError(option + ": expected a list of counts such as " + example + ", got '" + text + "'");
-    out.push_back(int(v));
-  }
-  if (out.empty()) throw UsageError(option + ": the list is empty");
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+    return int(v);
+  });
 }
 
-// A comma-separated list of render-time budgets in seconds, sorted, each once.
+// A comma-separated list of render-time budgets in seconds, shortest first.
 std::vector<double> duration_list(const std::string& text) {
-  std::vector<double> out;
-  for (const std::string& item : split_list(text)) out.push_back(duration_option("--times", item));
-  if (out.empty()) throw UsageError("--times: the list is empty");
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+  return parsed_list<double>(text, "--times", [](const std::string& item) { return duration_option("--times", item); });
 }
 
-// A comma-separated list of relative-error targets in (0, 1], loosest first, each once.
+// A comma-separated list of relative-error targets in (0, 1], loosest first.
 std::vector<double> noise_list(const std::string& text) {
-  std::vector<double> out;
-  for (const std::string& item : split_list(text)) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (*end != '\0' || !(v > 0 && v <= 1))
-      throw UsageError("--noise: expected a list of relative errors such as 0.05,0.02,0.01, got '" + text + "'");
-    out.push_back(v);
-  }
-  if (out.empty()) throw UsageError("--noise: the list is empty");
-  std::sort(out.begin(), out.end(), std::greater<>());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+  return parsed_list<double>(
+      text, "--noise",
+      [&](const std::string& item) {
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (*end != '\0' || !(v > 0 && v <= 1))
+          throw UsageError("--noise: expected a list of relative errors such as 0.05,0.02,0.01, got '" + text + "'");
+        return v;
+      },
+      std::greater<>());
 }
 
 ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
@@ -118,9 +118,7 @@ int converge(const ConvergeOptions& o) {
   const std::vector<std::string> samplers = split_list(o.samplers), integrators = split_list(o.integrators);
   const std::vector<std::string> allocations = split_list(o.allocations);
   if (allocations.empty()) throw UsageError("--allocations needs at least one name");
-  for (const std::string& a : allocations)
-    if (a != "uniform" && a != "error")
-      throw UsageError("--allocations: expected uniform or error, got '" + a + "'");
+  for (const std::string& a : allocations) check_allocation_name("--allocations", a);
   if (samplers.empty() || integrators.empty()) throw UsageError("--samplers and --integrators need at least one name");
   if (!std::filesystem::is_directory(o.output_dir))
     throw OutputError(o.output_dir, "the output folder does not exist");

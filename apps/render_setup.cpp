@@ -2,10 +2,12 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
 #include "apps/command_errors.h"
+#include "core/sample_schedule.h"
 #include "core/sampler_factory.h"
 #include "integrators/integrator_factory.h"
 #include "io/duration_text.h"
@@ -58,8 +60,7 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
     throw UsageError(
         "a sample range renders a fixed slice of samples: it cannot be combined with --time, --noise or --allocation "
         "error");
-  if (s.allocation != "uniform" && s.allocation != "error")
-    throw UsageError("--allocation: expected uniform or error, got '" + s.allocation + "'");
+  check_allocation_name("--allocation", s.allocation);
   if (s.allocation == "error" && s.noise_target > 0)
     throw UsageError("--allocation error cannot be combined with --noise, which shares samples by its own rule");
   // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
@@ -103,6 +104,14 @@ double duration_option(const std::string& option, const std::string& text) {
   if (!seconds || !(*seconds > 0))
     throw UsageError(option + ": expected a duration such as 60, 30s, 2m or 1h30m, got '" + text + "'");
   return *seconds;
+}
+
+void check_allocation_name(const std::string& option, const std::string& name) {
+  const std::vector<std::string> names = allocation_names();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  std::string known;
+  for (size_t i = 0; i < names.size(); ++i) known += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  throw UsageError(option + ": expected " + known + ", got '" + name + "'");
 }
 
 ProgressStyle progress_style_option(const std::string& text) {

@@ -40,6 +40,8 @@ std::string si(double v);
 
 // The positive duration given to `option` (60, "30s", "2m", "1h30m"); throws UsageError naming it.
 double duration_option(const std::string& option, const std::string& text);
+// Throws a UsageError naming `option` unless `name` is one of allocation_names().
+void check_allocation_name(const std::string& option, const std::string& name);
 // The --progress style ("bar", "plain" or "none"); throws UsageError for anything else.
 ProgressStyle progress_style_option(const std::string& text);
 

@@ -18,6 +18,8 @@ Rgb mean_colour(const Film& film, int x, int y) {
 
 }  // namespace
 
+std::vector<std::string> allocation_names() { return {"uniform", "error"}; }
+
 SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int height)
     : max_spp_(uint32_t(std::max(1, settings.spp))),
       min_spp_(uint32_t(std::clamp(settings.min_spp, 1, std::max(1, settings.spp)))),
@@ -28,8 +30,12 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
       pixels_(size_t(width) * size_t(height)),
       expected_samples_(uint64_t(width) * height * max_spp_),
       converged_(pixels_, 0) {
-  if (settings.allocation != "uniform" && settings.allocation != "error")
-    throw std::invalid_argument("unknown allocation '" + settings.allocation + "' (known: uniform, error)");
+  const std::vector<std::string> names = allocation_names();
+  if (std::find(names.begin(), names.end(), settings.allocation) == names.end()) {
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown allocation '" + settings.allocation + "' (known: " + known + ")");
+  }
   if (by_error_ && noise_target_ > 0)
     throw std::invalid_argument("a noise target allocates samples by its own rule: use --allocation uniform with it");
   // Under a fixed spp, spp is every pixel's count; shared by error it is the mean, and no pixel

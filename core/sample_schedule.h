@@ -3,12 +3,16 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/film.h"
 #include "core/render_settings.h"
 
 namespace prism {
+
+// The names RenderSettings::allocation takes, the default first.
+std::vector<std::string> allocation_names();
 
 class SampleSchedule {
  public:

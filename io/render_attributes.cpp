@@ -35,10 +35,8 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
     a.push_back({"prism/aovs", names});
   }
   // Written only when samples are shared by error, so files of uniform renders keep their bytes.
-  if (s.allocation != "uniform") {
-    a.push_back({"prism/allocation", s.allocation});
-    a.push_back({"prism/minSpp", s.min_spp});
-  }
+  if (s.allocation != "uniform") a.push_back({"prism/allocation", s.allocation});
+  if (adaptive || s.allocation != "uniform") a.push_back({"prism/minSpp", s.min_spp});
   if (timed || adaptive) {
     a.push_back({"prism/sppLimit", s.spp});
     a.push_back({"prism/passes", stats.passes});
@@ -56,7 +54,6 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
   }
   if (adaptive) {
     a.push_back({"prism/noiseTarget", s.noise_target});
-    if (s.allocation == "uniform") a.push_back({"prism/minSpp", s.min_spp});
     a.push_back({"prism/convergedFraction", stats.converged_fraction});
   }
   return a;

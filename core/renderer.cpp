@@ -46,9 +46,9 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
   auto render_tile = [&](int tile_index) {
     const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
-    std::unique_ptr<Sampler> lane_samplers[kLanes];
+    const std::vector<std::unique_ptr<Sampler>> lane_samplers = make_lane_samplers(settings.sampler, settings.seed, kLanes);
     Sampler* samplers[kLanes];
-    for (int k = 0; k < kLanes; ++k) samplers[k] = (lane_samplers[k] = make_sampler(settings.sampler, settings.seed)).get();
+    for (int k = 0; k < kLanes; ++k) samplers[k] = lane_samplers[size_t(k)].get();
     RayCounters counters;
     uint64_t nonfinite = 0;
     // Counted once per tile: shared counters updated per packet bounce their cache line between

@@ -16,4 +16,15 @@ std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed) {
   throw std::invalid_argument("unknown sampler '" + name + "' (known: " + names + ")");
 }
 
+std::vector<std::unique_ptr<Sampler>> make_lane_samplers(const std::string& name, uint64_t seed, int count) {
+  std::vector<std::unique_ptr<Sampler>> samplers;
+  if (name == "sobol") {
+    auto cache = std::make_shared<SobolSeedCache>(seed, count);
+    for (int k = 0; k < count; ++k) samplers.push_back(std::make_unique<SobolSampler>(seed, cache));
+  } else {
+    for (int k = 0; k < count; ++k) samplers.push_back(make_sampler(name, seed));
+  }
+  return samplers;
+}
+
 }  // namespace prism

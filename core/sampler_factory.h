@@ -15,4 +15,9 @@ std::vector<std::string> sampler_names();  // the default first
 // Throws std::invalid_argument naming the known samplers for an unknown name.
 std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed);
 
+// `count` samplers for the lanes of a packet, drawing the values make_sampler's would. Where a
+// sampler has work that lanes in the same pixel can share, they share it (Sobol's seed cache).
+// They belong to one thread.
+std::vector<std::unique_ptr<Sampler>> make_lane_samplers(const std::string& name, uint64_t seed, int count);
+
 }  // namespace prism

@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 
 #include "core/hash.h"
 #include "core/owen_sobol.h"
 #include "core/owen_sobol_vertex.h"
 #include "core/sampler.h"
+#include "core/sobol_seed_cache.h"
 
 namespace prism {
 
@@ -18,15 +21,21 @@ namespace prism {
 // different dimensions and pixels stay uncorrelated. Sample indices are taken modulo 2^32.
 class SobolSampler final : public Sampler {
  public:
-  explicit SobolSampler(uint64_t seed) : seed_(seed) {}
+  // A sampler with seed caches of its own.
+  explicit SobolSampler(uint64_t seed) : SobolSampler(seed, std::make_shared<SobolSeedCache>(seed, 1)) {}
+  // A sampler drawing seeds from `cache`, shared with the other lanes of a packet (same seed).
+  SobolSampler(uint64_t seed, std::shared_ptr<SobolSeedCache> cache)
+      : seed_(seed), cache_(std::move(cache)), entry_(cache_->take(-1, -1, -1)) {}
+  // A copy draws the same values from caches of its own.
+  SobolSampler(const SobolSampler& other)
+      : seed_(other.seed_), cache_(std::make_shared<SobolSeedCache>(other.seed_, 1)),
+        entry_(cache_->take(-1, other.cache_->entry(other.entry_).x, other.cache_->entry(other.entry_).y)),
+        reversed_index_(other.reversed_index_), dimension_(other.dimension_) {}
+  SobolSampler& operator=(const SobolSampler&) = delete;
+  ~SobolSampler() override { cache_->release(entry_); }
 
   void start_pixel_sample(int x, int y, uint64_t index) override {
-    if (x != x_ || y != y_) {
-      x_ = x;
-      y_ = y;
-      pixel_hash_ = hash_values(static_cast<uint64_t>(x), static_cast<uint64_t>(y), seed_, 0x50b01ull);
-      cached_ = 0;
-    }
+    entry_ = cache_->take(entry_, x, y);
     reversed_index_ = reverse_bits(static_cast<uint32_t>(index));
     dimension_ = 0;
   }
@@ -37,9 +46,10 @@ class SobolSampler final : public Sampler {
     if (!owen_sobol_vertex_available()) return Sampler::next_vertex();  // one draw at a time
     float u[7];
     const uint32_t d = dimension_;
-    if (d + 5 <= cached_) {  // the usual case: every seed from the cache, as it lies
+    SobolSeedCache::Entry& e = cache_->entry(entry_);
+    if (d + 5 <= e.cached) {  // the usual case: every seed from the cache, as it lies
       dimension_ += 5;
-      owen_sobol_vertex(reversed_index_, {index_seed_ + d, value0_seed_ + d, value1_seed_ + d}, u);
+      owen_sobol_vertex(reversed_index_, {e.index + d, e.value0 + d, e.value1 + d}, u);
     } else {
       SeedRun run;
       for (int k = 0; k < 5; ++k) run.set(k, next_seeds());  // in order, filling the cache
@@ -49,21 +59,7 @@ class SobolSampler final : public Sampler {
   }
 
  private:
-  // The seeds of a dimension depend on the pixel, not the sample index: consecutive samples of a
-  // pixel reuse them from a small cache, kept as arrays that owen_sobol_vertex loads directly.
-  SobolSeeds next_seeds() {
-    const uint32_t d = dimension_++;
-    if (d < cached_) return {index_seed_[d], value0_seed_[d], value1_seed_[d]};
-    const uint64_t h = hash_combine(pixel_hash_, d);
-    const SobolSeeds s{uint32_t(h), uint32_t(h >> 32), uint32_t(mix64(h))};
-    if (d == cached_ && d < kCachedDimensions) {
-      index_seed_[d] = s.index;
-      value0_seed_[d] = s.value0;
-      value1_seed_[d] = s.value1;
-      ++cached_;
-    }
-    return s;
-  }
+  SobolSeeds next_seeds() { return cache_->seeds(cache_->entry(entry_), dimension_++); }
 
   // Five dimensions' seeds outside the cache, padded for owen_sobol_vertex's eight-wide loads.
   struct SeedRun {
@@ -75,17 +71,11 @@ class SobolSampler final : public Sampler {
     }
   };
 
-  static constexpr uint32_t kCachedDimensions = 64;
-  static constexpr uint32_t kPadding = 8;  // owen_sobol_vertex reads eight seeds from the run's start
   uint64_t seed_;
-  int x_ = -1, y_ = -1;
-  uint64_t pixel_hash_ = 0;
+  std::shared_ptr<SobolSeedCache> cache_;
+  int entry_;  // this sampler's pixel in cache_ (pixel (-1, -1) until started)
   uint32_t reversed_index_ = 0;
   uint32_t dimension_ = 0;
-  uint32_t cached_ = 0;
-  uint32_t index_seed_[kCachedDimensions + kPadding] = {};
-  uint32_t value0_seed_[kCachedDimensions + kPadding] = {};
-  uint32_t value1_seed_[kCachedDimensions + kPadding] = {};
 };
 
 }  // namespace prism

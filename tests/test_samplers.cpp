@@ -163,6 +163,84 @@ TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
   }
 }
 
+// A packet's lane samplers share work between lanes in the same pixel (Sobol's seed cache), yet
+// each draws what a sampler of its own would: here lanes start mixes of up to eight pixels per
+// packet, come back to pixels they left, and reach different depths, past the 64 cached dimensions.
+TEST(Samplers, LaneSamplersDrawWhatLoneSamplersDraw) {
+  for (const std::string& name : sampler_names()) {
+    constexpr int kLanes = 8;
+    const std::vector<std::unique_ptr<Sampler>> lanes = make_lane_samplers(name, 33, kLanes);
+    ASSERT_EQ(lanes.size(), size_t(kLanes));
+    auto lone = make_sampler(name, 33);
+    Pcg32 rng(4, 7);
+    for (int packet = 0; packet < 300; ++packet) {
+      const int pixels = 1 + int(rng.next_u32() % kLanes);  // distinct pixels in this packet
+      int x[kLanes], y[kLanes], depth[kLanes];
+      uint64_t index[kLanes];
+      for (int k = 0; k < kLanes; ++k) {
+        const int p = int(rng.next_u32() % uint32_t(pixels)) + packet % 3;  // overlaps the last packets' pixels
+        x[k] = p % 4;
+        y[k] = p / 4;
+        index[k] = rng.next_u32() % 64;
+        depth[k] = 1 + int(rng.next_u32() % 16);  // vertices: up to 81 dimensions
+        lanes[size_t(k)]->start_pixel_sample(x[k], y[k], index[k]);
+      }
+      std::vector<float> drawn[kLanes];
+      for (int vertex = 0; vertex < 16; ++vertex)  // lanes advance together, as in a packet
+        for (int k = 0; k < kLanes; ++k) {
+          if (vertex >= depth[k]) continue;
+          const VertexSamples v = lanes[size_t(k)]->next_vertex();
+          drawn[k].insert(drawn[k].end(), {v.light_spare, v.light_point.x, v.light_point.y, v.lobe, v.direction.x,
+                                           v.direction.y, v.roulette});
+        }
+      for (int k = 0; k < kLanes; ++k) {
+        lone->start_pixel_sample(x[k], y[k], index[k]);
+        for (size_t i = 0; i < drawn[k].size(); i += 7) {
+          const VertexSamples v = lone->next_vertex();
+          const float expected[7] = {v.light_spare, v.light_point.x, v.light_point.y, v.lobe,
+                                     v.direction.x, v.direction.y,   v.roulette};
+          for (int c = 0; c < 7; ++c)
+            ASSERT_EQ(drawn[k][i + size_t(c)], expected[c]) << name << " packet " << packet << " lane " << k << " draw " << i + size_t(c);
+        }
+      }
+    }
+  }
+}
+
+// A lane that stays on one pixel keeps its seeds while the other lanes run through many pixels.
+TEST(Samplers, LaneSamplerKeepsItsPixelWhileOthersMoveOn) {
+  for (const std::string& name : sampler_names()) {
+    const std::vector<std::unique_ptr<Sampler>> lanes = make_lane_samplers(name, 2, 8);
+    auto lone = make_sampler(name, 2);
+    lanes[0]->start_pixel_sample(9, 9, 3);
+    lone->start_pixel_sample(9, 9, 3);
+    std::vector<float> expected;
+    for (int i = 0; i < 40; ++i) expected.push_back(lone->next_1d());
+    for (int i = 0; i < 40; ++i) {
+      for (int k = 1; k < 8; ++k) {
+        lanes[size_t(k)]->start_pixel_sample(i * 8 + k, 0, 0);
+        lanes[size_t(k)]->next_2d();
+      }
+      ASSERT_EQ(lanes[0]->next_1d(), expected[size_t(i)]) << name << " dimension " << i;
+    }
+  }
+}
+
+// A copy of a sampler goes on drawing what the original would, from caches of its own.
+TEST(Samplers, CopiedSobolSamplerContinuesAlone) {
+  const std::vector<std::unique_ptr<Sampler>> lanes = make_lane_samplers("sobol", 5, 2);
+  auto& original = static_cast<SobolSampler&>(*lanes[0]);
+  original.start_pixel_sample(6, 2, 11);
+  original.next_vertex();
+  SobolSampler copy(original);
+  lanes[1]->start_pixel_sample(1, 1, 0);  // the shared cache moves on
+  original.start_pixel_sample(0, 0, 0);
+  SobolSampler lone(5);
+  lone.start_pixel_sample(6, 2, 11);
+  lone.next_vertex();
+  for (int d = 0; d < 70; ++d) ASSERT_EQ(copy.next_1d(), lone.next_1d()) << "dimension " << d;
+}
+
 // Pooled over pixels, every dimension is uniform, and a 1D draw is independent of the next one
 // (chi-square over a 16 x 16 grid; a correct sampler's statistic has mean 255 and deviation 22.6;
 // stratification can only lower it).

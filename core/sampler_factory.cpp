@@ -20,7 +20,7 @@ std::vector<std::unique_ptr<Sampler>> make_lane_samplers(const std::string& name
   std::vector<std::unique_ptr<Sampler>> samplers;
   if (name == "sobol") {
     auto cache = std::make_shared<SobolSeedCache>(seed, count);
-    for (int k = 0; k < count; ++k) samplers.push_back(std::make_unique<SobolSampler>(seed, cache));
+    for (int k = 0; k < count; ++k) samplers.push_back(std::make_unique<SobolSampler>(cache));
   } else {
     for (int k = 0; k < count; ++k) samplers.push_back(make_sampler(name, seed));
   }

@@ -22,13 +22,13 @@ namespace prism {
 class SobolSampler final : public Sampler {
  public:
   // A sampler with seed caches of its own.
-  explicit SobolSampler(uint64_t seed) : SobolSampler(seed, std::make_shared<SobolSeedCache>(seed, 1)) {}
-  // A sampler drawing seeds from `cache`, shared with the other lanes of a packet (same seed).
-  SobolSampler(uint64_t seed, std::shared_ptr<SobolSeedCache> cache)
-      : seed_(seed), cache_(std::move(cache)), entry_(cache_->take(-1, -1, -1)) {}
+  explicit SobolSampler(uint64_t seed) : SobolSampler(std::make_shared<SobolSeedCache>(seed, 1)) {}
+  // A sampler drawing seeds from `cache` (and with its seed), shared with the other lanes of a packet.
+  explicit SobolSampler(std::shared_ptr<SobolSeedCache> cache)
+      : cache_(std::move(cache)), entry_(cache_->take(-1, -1, -1)) {}
   // A copy draws the same values from caches of its own.
   SobolSampler(const SobolSampler& other)
-      : seed_(other.seed_), cache_(std::make_shared<SobolSeedCache>(other.seed_, 1)),
+      : cache_(std::make_shared<SobolSeedCache>(other.cache_->seed(), 1)),
         entry_(cache_->take(-1, other.cache_->entry(other.entry_).x, other.cache_->entry(other.entry_).y)),
         reversed_index_(other.reversed_index_), dimension_(other.dimension_) {}
   SobolSampler& operator=(const SobolSampler&) = delete;
@@ -71,7 +71,6 @@ class SobolSampler final : public Sampler {
     }
   };
 
-  uint64_t seed_;
   std::shared_ptr<SobolSeedCache> cache_;
   int entry_;  // this sampler's pixel in cache_ (pixel (-1, -1) until started)
   uint32_t reversed_index_ = 0;

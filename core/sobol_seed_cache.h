@@ -65,6 +65,7 @@ class SobolSeedCache {
   }
 
   Entry& entry(int i) { return entries_[size_t(i)]; }
+  uint64_t seed() const { return seed_; }
 
   // Dimension d's seeds for the entry's pixel. The next dimension not yet cached is stored;
   // dimensions past the cache are hashed each time.

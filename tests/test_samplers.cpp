@@ -1,6 +1,7 @@
 // Samplers: Sobol's construction and stratification, determinism, uniformity, independence between
 // pixels, and the convergence rate each sampler gives on the furnace.
 #include <gtest/gtest.h>
+#include <array>
 
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,11 @@
 
 namespace prism {
 namespace {
+
+// A vertex's seven coordinates, in the order a sampler draws them.
+std::array<float, 7> coordinates(const VertexSamples& v) {
+  return {v.light_spare, v.light_point.x, v.light_point.y, v.lobe, v.direction.x, v.direction.y, v.roulette};
+}
 
 TEST(Sobol, TablesMatchTheDirectionNumbers) {
   Pcg32 rng(5, 6);
@@ -145,9 +151,7 @@ TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
       batched->start_pixel_sample(x, y, index);
       single->start_pixel_sample(x, y, index);
       for (int vertex = 0; vertex < 18; ++vertex) {  // 90 dimensions
-        const VertexSamples v = batched->next_vertex();
-        const float at_once[7] = {v.light_spare, v.light_point.x, v.light_point.y, v.lobe,
-                                  v.direction.x, v.direction.y,   v.roulette};
+        const std::array<float, 7> at_once = coordinates(batched->next_vertex());
         const float light_spare = single->next_1d();
         const Vec2 light_point = single->next_2d();
         const float lobe = single->next_1d();
@@ -185,22 +189,17 @@ TEST(Samplers, LaneSamplersDrawWhatLoneSamplersDraw) {
         depth[k] = 1 + int(rng.next_u32() % 16);  // vertices: up to 81 dimensions
         lanes[size_t(k)]->start_pixel_sample(x[k], y[k], index[k]);
       }
-      std::vector<float> drawn[kLanes];
+      std::vector<std::array<float, 7>> drawn[kLanes];
       for (int vertex = 0; vertex < 16; ++vertex)  // lanes advance together, as in a packet
-        for (int k = 0; k < kLanes; ++k) {
-          if (vertex >= depth[k]) continue;
-          const VertexSamples v = lanes[size_t(k)]->next_vertex();
-          drawn[k].insert(drawn[k].end(), {v.light_spare, v.light_point.x, v.light_point.y, v.lobe, v.direction.x,
-                                           v.direction.y, v.roulette});
-        }
+        for (int k = 0; k < kLanes; ++k)
+          if (vertex < depth[k]) drawn[k].push_back(coordinates(lanes[size_t(k)]->next_vertex()));
       for (int k = 0; k < kLanes; ++k) {
         lone->start_pixel_sample(x[k], y[k], index[k]);
-        for (size_t i = 0; i < drawn[k].size(); i += 7) {
-          const VertexSamples v = lone->next_vertex();
-          const float expected[7] = {v.light_spare, v.light_point.x, v.light_point.y, v.lobe,
-                                     v.direction.x, v.direction.y,   v.roulette};
-          for (int c = 0; c < 7; ++c)
-            ASSERT_EQ(drawn[k][i + size_t(c)], expected[c]) << name << " packet " << packet << " lane " << k << " draw " << i + size_t(c);
+        for (size_t vertex = 0; vertex < drawn[k].size(); ++vertex) {
+          const std::array<float, 7> expected = coordinates(lone->next_vertex());
+          for (size_t c = 0; c < 7; ++c)
+            ASSERT_EQ(drawn[k][vertex][c], expected[c])
+                << name << " packet " << packet << " lane " << k << " vertex " << vertex << " coordinate " << c;
         }
       }
     }

@@ -5,17 +5,22 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
 #include "apps/command_errors.h"
 #include "apps/render_setup.h"
 #include "core/renderer.h"
 #include "integrators/integrator_factory.h"
+#include "io/atomic_file.h"
+#include "io/bench_runs.h"
 
 namespace prism {
 namespace {
@@ -35,8 +40,8 @@ std::vector<std::string> canonical_scenes() {
   return scenes;
 }
 
-// Loads, builds and renders one scene; returns its line of figures (without the peak memory).
-std::string bench_scene(const BenchOptions& o, const std::string& path) {
+// Loads, builds and renders one scene; the figures of that render (without the peak memory).
+BenchRun bench_scene(const BenchOptions& o, const std::string& path) {
   RenderOptions ro;
   ro.scene = path;
   ro.resolution = o.resolution;
@@ -52,63 +57,117 @@ std::string bench_scene(const BenchOptions& o, const std::string& path) {
   const RenderSettings& s = p.settings;
   Film film(s.width, s.height);
   const RenderStats stats = render(*p.scene, Camera(p.camera, s.width, s.height), *make_integrator(s), s, film);
-  const double secs = std::max(stats.seconds, 1e-9);
-  auto mrays = [&](uint64_t n) { return double(n) / secs / 1e6; };
-  return fmt::format("{:<22}{:>9}{:>8.3f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}",
-                     std::filesystem::path(path).filename().string().substr(0, 21),
-                     si(double(p.scene->triangle_count())), p.scene->build_seconds(), stats.seconds,
-                     double(stats.samples) / secs / 1e6, mrays(stats.rays.total()), mrays(stats.rays.camera),
-                     mrays(stats.rays.extension), mrays(stats.rays.shadow));
+  BenchRun run;
+  run.triangles = p.scene->triangle_count();
+  run.bvh_seconds = p.scene->build_seconds();
+  run.render_seconds = stats.seconds;
+  run.samples = stats.samples;
+  run.camera_rays = stats.rays.camera;
+  run.extension_rays = stats.rays.extension;
+  run.shadow_rays = stats.rays.shadow;
+  return run;
 }
 
-// Each scene renders in a child process, so its peak memory is its own (wait4's ru_maxrss) and a
-// failing scene cannot take the others down.
+// Renders one scene in a child process, so its peak memory is its own (wait4's ru_maxrss) and a
+// failing scene cannot take the others down; nullopt when it failed (the child printed why).
+std::optional<BenchRun> bench_scene_in_child(const BenchOptions& o, const std::string& path) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  std::fflush(nullptr);  // the child must not print the parent's buffered output again
+  const pid_t child = ::fork();
+  if (child < 0) throw std::runtime_error("fork failed");
+  if (child == 0) {
+    ::close(fds[0]);
+    std::string text;
+    int code = run_reporting_errors([&] {
+      text = to_text(bench_scene(o, path));
+      return kExitOk;
+    });
+    if (::write(fds[1], text.data(), text.size()) < 0) code = kExitInternal;
+    ::close(fds[1]);
+    std::fflush(nullptr);
+    ::_exit(code);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) break;
+    text.append(buffer, size_t(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  rusage usage{};
+  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  std::optional<BenchRun> run = bench_run_from_text(text);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !run) return std::nullopt;
+  run->peak_mb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+  return run;
+}
+
+// The processor's name as /proc/cpuinfo gives it, for the record of where figures were measured.
+std::string processor_name() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const size_t colon = line.find(':');
+    if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+  }
+  return "unknown processor";
+}
+
+std::string scene_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+// With --repeat, the scenes take turns (every scene once, then again), so a drift in the machine's
+// speed during the call reaches every scene alike; each line then gives the medians of its runs.
 int bench(const BenchOptions& o) {
   const std::vector<std::string> scenes = o.scenes.empty() ? canonical_scenes() : o.scenes;
-  fmt::print("prism {} bench: {} spp, {}, max depth {}, {} sampler, {} threads\n", PRISM_VERSION, o.spp, o.resolution,
-             o.max_depth, o.sampler, o.threads > 0 ? std::to_string(o.threads) : "all");
-  fmt::print("{:<22}{:>9}{:>8}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}\n", "scene", "tris", "BVH s", "render s", "Mpaths/s",
-             "Mrays/s", "camera", "extend", "shadow", "peak MB");
+  if (!o.csv.empty()) check_output_path(o.csv);
+  const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
+  fmt::print("prism {} bench: {} spp, {}, max depth {}, {} sampler, {} threads on {}{}\n", PRISM_VERSION, o.spp,
+             o.resolution, o.max_depth, o.sampler, threads, processor_name(),
+             o.repeat > 1 ? fmt::format("; medians of {} runs, scenes in turn", o.repeat) : "");
+  fmt::print("{:<22}{:>9}{:>8}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{}\n", "scene", "tris", "BVH s", "render s", "Mpaths/s",
+             "Mrays/s", "camera", "extend", "shadow", "peak MB", o.repeat > 1 ? "  render s min..max" : "");
   std::fflush(stdout);
-  int failures = 0;
-  for (const std::string& path : scenes) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t child = ::fork();
-    if (child < 0) throw std::runtime_error("fork failed");
-    if (child == 0) {
-      ::close(fds[0]);
-      int code = kExitOk;
-      std::string line;
-      code = run_reporting_errors([&] {
-        line = bench_scene(o, path);
-        return kExitOk;
-      });
-      if (::write(fds[1], line.data(), line.size()) < 0) code = kExitInternal;
-      ::close(fds[1]);
-      std::fflush(nullptr);
-      ::_exit(code);
+  const BenchSettingsText settings{o.spp, o.resolution, o.sampler, o.max_depth, threads};
+  std::vector<std::vector<BenchRun>> runs(scenes.size());
+  std::vector<bool> failed(scenes.size(), false);
+  std::string csv = bench_csv_header();
+  auto print_line = [&](size_t i) {
+    if (failed[i]) {
+      fmt::print("{:<22} failed (see the error above)\n", scene_name(scenes[i]));
+    } else {
+      const BenchSummary m = summarize(runs[i]);
+      fmt::print("{:<22}{:>9}{:>8.3f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.0f}{}\n",
+                 scene_name(scenes[i]).substr(0, 21), si(double(m.triangles)), m.bvh_seconds, m.render_seconds, m.mpaths,
+                 m.mrays, m.camera_mrays, m.extension_mrays, m.shadow_mrays, m.peak_mb,
+                 o.repeat > 1 ? fmt::format("  {:.2f}..{:.2f}", m.render_seconds_min, m.render_seconds_max) : "");
     }
-    ::close(fds[1]);
-    std::string line;
-    char buffer[512];
-    for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) != 0;) {
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) break;
-      line.append(buffer, size_t(n));
-    }
-    ::close(fds[0]);
-    int status = 0;
-    rusage usage{};
-    while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
-    }
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && !line.empty();
-    if (ok) fmt::print("{}{:>9.0f}\n", line, double(usage.ru_maxrss) / 1024.0);  // ru_maxrss is in KiB on Linux
-    else fmt::print("{:<22} failed (see the error above)\n", std::filesystem::path(path).filename().string());
     std::fflush(stdout);
-    failures += !ok;
+  };
+  for (int rep = 1; rep <= o.repeat; ++rep) {
+    if (o.repeat > 1 && ::isatty(STDERR_FILENO)) fmt::print(stderr, "prism: run {} of {}\n", rep, o.repeat);
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      if (failed[i]) continue;
+      const std::optional<BenchRun> run = bench_scene_in_child(o, scenes[i]);
+      if (run) {
+        runs[i].push_back(*run);
+        csv += bench_csv_row(scene_name(scenes[i]), rep, *run, settings);
+      }
+      failed[i] = !run;
+      if (o.repeat == 1) print_line(i);  // at once: no more runs are to come
+    }
   }
-  return failures ? kExitInput : kExitOk;
+  if (o.repeat > 1)
+    for (size_t i = 0; i < scenes.size(); ++i) print_line(i);  // a scene that failed once is reported failed
+  if (!o.csv.empty()) {
+    write_file_atomically(o.csv, csv);
+    fmt::print("-> {}\n", o.csv);
+  }
+  return std::find(failed.begin(), failed.end(), true) != failed.end() ? kExitInput : kExitOk;
 }
 
 }  // namespace
@@ -125,6 +184,11 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
   cmd->add_option("--max-depth", o.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", o.threads, "Worker threads; 0 = all cores (default)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--sampler", o.sampler, "Sampler (default sobol)");
+  cmd->add_option("--repeat", o.repeat,
+                  "Render each scene this many times, the scenes taking turns, and print the median of each figure "
+                  "and the range of render seconds (default 1)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--csv", o.csv, "Also write every run's figures and settings to this CSV file");
   return cmd;
 }
 

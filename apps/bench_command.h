@@ -17,6 +17,8 @@ struct BenchOptions {
   int max_depth = 8;
   int threads = 0;
   std::string sampler = "sobol";
+  int repeat = 1;   // renders of each scene; the line gives their medians
+  std::string csv;  // every run's figures, when set
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchOptions& options);

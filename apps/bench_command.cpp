@@ -17,10 +17,15 @@
 
 #include "apps/command_errors.h"
 #include "apps/render_setup.h"
+#include "core/hash.h"
+#include "core/image_metrics.h"
 #include "core/renderer.h"
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
 #include "io/bench_runs.h"
+#include "io/exr_writer.h"
+#include "io/image_decode.h"
+#include "io/render_attributes.h"
 
 namespace prism {
 namespace {
@@ -40,8 +45,8 @@ std::vector<std::string> canonical_scenes() {
   return scenes;
 }
 
-// Loads, builds and renders one scene; the figures of that render (without the peak memory).
-BenchRun bench_scene(const BenchOptions& o, const std::string& path) {
+// The settings a bench render of `path` runs with.
+RenderOptions bench_render_options(const BenchOptions& o, const std::string& path) {
   RenderOptions ro;
   ro.scene = path;
   ro.resolution = o.resolution;
@@ -50,7 +55,14 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path) {
   ro.settings.threads = o.threads;
   ro.settings.sampler = o.sampler;
   ro.quiet = true;
-  PreparedRender p = prepare_render(ro);
+  return ro;
+}
+
+// Loads, builds and renders one scene (in a process of its own, see run_in_child); the figures of
+// that render, with its error against `reference` when one is named, measured after the clock
+// stops and after the process's peak memory is read (reading an image must not count).
+BenchRun bench_scene(const BenchOptions& o, const std::string& path, const std::string& reference) {
+  PreparedRender p = prepare_render(bench_render_options(o, path));
   std::optional<tbb::global_control> limit;
   if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
   build_scene(p, true);
@@ -58,6 +70,16 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path) {
   Film film(s.width, s.height);
   const RenderStats stats = render(*p.scene, Camera(p.camera, s.width, s.height), *make_integrator(s), s, film);
   BenchRun run;
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) == 0) run.peak_mb = double(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+  if (!reference.empty()) {
+    const ImageDesc ref = read_image_file(reference, ColorSpace::Linear);
+    if (ref.width != s.width || ref.height != s.height)
+      throw InputError(reference, "image size",
+                       fmt::format("the reference is {}x{}, the bench renders {}x{}; delete it to render it again",
+                                   ref.width, ref.height, s.width, s.height));
+    run.rel_mse = compare_images({"", s.width, s.height, 4, film.resolve_rgba()}, ref).all.rel_mse;
+  }
   run.triangles = p.scene->triangle_count();
   run.bvh_seconds = p.scene->build_seconds();
   run.render_seconds = stats.seconds;
@@ -68,9 +90,30 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path) {
   return run;
 }
 
-// Renders one scene in a child process, so its peak memory is its own (wait4's ru_maxrss) and a
-// failing scene cannot take the others down; nullopt when it failed (the child printed why).
-std::optional<BenchRun> bench_scene_in_child(const BenchOptions& o, const std::string& path) {
+// Renders the converged image a scene's error is measured against, at --reference-spp with the
+// Sobol sampler (the same reference for every --sampler) and another seed than the timed renders,
+// so their errors are independent.
+void render_reference(const BenchOptions& o, const std::string& path, const std::string& reference) {
+  PreparedRender p = prepare_render(bench_render_options(o, path));
+  std::optional<tbb::global_control> limit;
+  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+  build_scene(p, true);
+  RenderSettings rs = p.settings;
+  rs.spp = o.reference_spp;
+  rs.sampler = "sobol";
+  rs.seed = hash_values(p.settings.seed, 0x5eedull);
+  Film film(rs.width, rs.height);
+  const RenderStats stats = render(*p.scene, Camera(p.camera, rs.width, rs.height), *make_integrator(rs), rs, film);
+  std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
+  attributes.push_back({"prism/scene", p.scene_path});
+  write_exr(reference, rs.width, rs.height, film.resolve_rgba(), attributes);
+}
+
+// Runs `work` in a child process, so a render's peak memory is its own and a failing scene cannot
+// take the others down. The child's text (what `work` returns), or nullopt when it failed (the
+// child printed why).
+template <typename Work>
+std::optional<std::string> run_in_child(Work work) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
   std::fflush(nullptr);  // the child must not print the parent's buffered output again
@@ -80,7 +123,7 @@ std::optional<BenchRun> bench_scene_in_child(const BenchOptions& o, const std::s
     ::close(fds[0]);
     std::string text;
     int code = run_reporting_errors([&] {
-      text = to_text(bench_scene(o, path));
+      text = work();
       return kExitOk;
     });
     if (::write(fds[1], text.data(), text.size()) < 0) code = kExitInternal;
@@ -98,13 +141,16 @@ std::optional<BenchRun> bench_scene_in_child(const BenchOptions& o, const std::s
   }
   ::close(fds[0]);
   int status = 0;
-  rusage usage{};
-  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  std::optional<BenchRun> run = bench_run_from_text(text);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !run) return std::nullopt;
-  run->peak_mb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-  return run;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  return text;
+}
+
+std::optional<BenchRun> bench_scene_in_child(const BenchOptions& o, const std::string& path,
+                                             const std::string& reference) {
+  const std::optional<std::string> out = run_in_child([&] { return to_text(bench_scene(o, path, reference)); });
+  return out ? bench_run_from_text(*out) : std::nullopt;
 }
 
 // The processor's name as /proc/cpuinfo gives it, for the record of where figures were measured.
@@ -120,30 +166,62 @@ std::string processor_name() {
 
 std::string scene_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
+// Where a scene's reference lives in the --references folder: named by the scene (its file name
+// and a hash of its absolute path, so scenes of one name in two folders do not collide) and by
+// what the image depends on. A change to what the renderer converges to makes it stale: delete it.
+std::string reference_path(const BenchOptions& o, const std::string& scene) {
+  const std::filesystem::path path = std::filesystem::absolute(scene).lexically_normal();
+  uint64_t h = 0;  // the same on every build, unlike std::hash
+  for (const unsigned char c : path.string()) h = hash_combine(h, c);
+  return (std::filesystem::path(*o.references) / fmt::format("{}-{:08x}-{}-d{}-{}spp.exr", path.stem().string(),
+                                                              uint32_t(h), o.resolution, o.max_depth, o.reference_spp))
+      .string();
+}
+
 // With --repeat, the scenes take turns (every scene once, then again), so a drift in the machine's
 // speed during the call reaches every scene alike; each line then gives the medians of its runs.
 int bench(const BenchOptions& o) {
   const std::vector<std::string> scenes = o.scenes.empty() ? canonical_scenes() : o.scenes;
   if (!o.csv.empty()) check_output_path(o.csv);
+  if (o.references && !std::filesystem::is_directory(*o.references))
+    throw OutputError(*o.references, "the references folder does not exist");
   const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
+  std::vector<bool> failed(scenes.size(), false);
+  std::vector<std::string> references(scenes.size());
+  if (o.references) {
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      references[i] = reference_path(o, scenes[i]);
+      if (std::filesystem::exists(references[i])) continue;
+      fmt::print("rendering the reference of {}: {} spp -> {}\n", scene_name(scenes[i]), o.reference_spp,
+                 references[i]);
+      std::fflush(stdout);
+      failed[i] = !run_in_child([&] {
+        render_reference(o, scenes[i], references[i]);
+        return std::string();
+      });
+    }
+  }
+  const bool errors = o.references.has_value();
   fmt::print("prism {} bench: {} spp, {}, max depth {}, {} sampler, {} threads on {}{}\n", PRISM_VERSION, o.spp,
              o.resolution, o.max_depth, o.sampler, threads, processor_name(),
              o.repeat > 1 ? fmt::format("; medians of {} runs, scenes in turn", o.repeat) : "");
-  fmt::print("{:<22}{:>9}{:>8}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{}\n", "scene", "tris", "BVH s", "render s", "Mpaths/s",
-             "Mrays/s", "camera", "extend", "shadow", "peak MB", o.repeat > 1 ? "  render s min..max" : "");
+  fmt::print("{:<22}{:>9}{:>8}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{}{}\n", "scene", "tris", "BVH s", "render s", "Mpaths/s",
+             "Mrays/s", "camera", "extend", "shadow", "peak MB",
+             errors ? fmt::format("{:>12}{:>12}", "relMSE", "efficiency") : "",
+             o.repeat > 1 ? "  render s min..max" : "");
   std::fflush(stdout);
   const BenchSettingsText settings{o.spp, o.resolution, o.sampler, o.max_depth, threads};
   std::vector<std::vector<BenchRun>> runs(scenes.size());
-  std::vector<bool> failed(scenes.size(), false);
   std::string csv = bench_csv_header();
   auto print_line = [&](size_t i) {
     if (failed[i]) {
       fmt::print("{:<22} failed (see the error above)\n", scene_name(scenes[i]));
     } else {
       const BenchSummary m = summarize(runs[i]);
-      fmt::print("{:<22}{:>9}{:>8.3f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.0f}{}\n",
+      fmt::print("{:<22}{:>9}{:>8.3f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.2f}{:>9.0f}{}{}\n",
                  scene_name(scenes[i]).substr(0, 21), si(double(m.triangles)), m.bvh_seconds, m.render_seconds, m.mpaths,
                  m.mrays, m.camera_mrays, m.extension_mrays, m.shadow_mrays, m.peak_mb,
+                 errors ? fmt::format("{:>12.4g}{:>12.4g}", m.rel_mse, m.efficiency) : "",
                  o.repeat > 1 ? fmt::format("  {:.2f}..{:.2f}", m.render_seconds_min, m.render_seconds_max) : "");
     }
     std::fflush(stdout);
@@ -151,8 +229,11 @@ int bench(const BenchOptions& o) {
   for (int rep = 1; rep <= o.repeat; ++rep) {
     if (o.repeat > 1 && ::isatty(STDERR_FILENO)) fmt::print(stderr, "prism: run {} of {}\n", rep, o.repeat);
     for (size_t i = 0; i < scenes.size(); ++i) {
-      if (failed[i]) continue;
-      const std::optional<BenchRun> run = bench_scene_in_child(o, scenes[i]);
+      if (failed[i]) {
+        if (rep == 1 && o.repeat == 1) print_line(i);  // its reference failed
+        continue;
+      }
+      const std::optional<BenchRun> run = bench_scene_in_child(o, scenes[i], references[i]);
       if (run) {
         runs[i].push_back(*run);
         csv += bench_csv_row(scene_name(scenes[i]), rep, *run, settings);
@@ -175,7 +256,7 @@ int bench(const BenchOptions& o) {
 CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "bench", "Render the canonical scenes and print, per scene: triangles, BVH build and render seconds, Mpaths/s, "
-               "Mrays/s (all, camera, extension, shadow) and peak memory");
+               "Mrays/s (all, camera, extension, shadow), peak memory and, with --references, relative MSE and efficiency");
   cmd->add_option("SCENES", o.scenes,
                   "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass, scenes/many-lights and, once generated, "
                   "scenes/heavy-mesh)");
@@ -189,6 +270,11 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
                   "and the range of render seconds (default 1)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--csv", o.csv, "Also write every run's figures and settings to this CSV file");
+  cmd->add_option("--references", o.references,
+                  "Folder of converged images to measure each render's relative MSE and efficiency (1 / (relMSE x "
+                  "seconds)) against; a scene's reference is rendered into it at --reference-spp when absent");
+  cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the references bench renders (default 1024)")
+      ->check(CLI::PositiveNumber);
   return cmd;
 }
 

@@ -1,6 +1,7 @@
 // The `prism bench` command: renders the canonical scenes and prints one line of figures per scene.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct BenchOptions {
   std::string sampler = "sobol";
   int repeat = 1;   // renders of each scene; the line gives their medians
   std::string csv;  // every run's figures, when set
+  std::optional<std::string> references;  // folder of converged images: errors are measured when set
+  int reference_spp = 1024;
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchOptions& options);

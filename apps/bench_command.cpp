@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <utility>
 
 #include "apps/command_errors.h"
 #include "apps/render_setup.h"
@@ -45,8 +46,10 @@ std::vector<std::string> canonical_scenes() {
   return scenes;
 }
 
-// The settings a bench render of `path` runs with.
-RenderOptions bench_render_options(const BenchOptions& o, const std::string& path) {
+// Loads and builds `path` with the bench's settings, limits the worker threads as --threads asks,
+// and hands the prepared render to `use` (the limit holds while it runs).
+template <typename Use>
+auto with_bench_scene(const BenchOptions& o, const std::string& path, Use use) {
   RenderOptions ro;
   ro.scene = path;
   ro.resolution = o.resolution;
@@ -55,58 +58,64 @@ RenderOptions bench_render_options(const BenchOptions& o, const std::string& pat
   ro.settings.threads = o.threads;
   ro.settings.sampler = o.sampler;
   ro.quiet = true;
-  return ro;
+  PreparedRender p = prepare_render(ro);
+  std::optional<tbb::global_control> limit;
+  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+  build_scene(p, true);
+  return use(p);
+}
+
+// Renders `settings` on a prepared scene into a new film.
+std::pair<Film, RenderStats> render_film(const PreparedRender& p, const RenderSettings& settings) {
+  Film film(settings.width, settings.height);
+  const RenderStats stats =
+      render(*p.scene, Camera(p.camera, settings.width, settings.height), *make_integrator(settings), settings, film);
+  return {std::move(film), stats};
 }
 
 // Loads, builds and renders one scene (in a process of its own, see run_in_child); the figures of
 // that render, with its error against `reference` when one is named, measured after the clock
 // stops and after the process's peak memory is read (reading an image must not count).
 BenchRun bench_scene(const BenchOptions& o, const std::string& path, const std::string& reference) {
-  PreparedRender p = prepare_render(bench_render_options(o, path));
-  std::optional<tbb::global_control> limit;
-  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-  build_scene(p, true);
-  const RenderSettings& s = p.settings;
-  Film film(s.width, s.height);
-  const RenderStats stats = render(*p.scene, Camera(p.camera, s.width, s.height), *make_integrator(s), s, film);
-  BenchRun run;
-  rusage usage{};
-  if (::getrusage(RUSAGE_SELF, &usage) == 0) run.peak_mb = double(usage.ru_maxrss) / 1024.0;  // KiB on Linux
-  if (!reference.empty()) {
-    const ImageDesc ref = read_image_file(reference, ColorSpace::Linear);
-    if (ref.width != s.width || ref.height != s.height)
-      throw InputError(reference, "image size",
-                       fmt::format("the reference is {}x{}, the bench renders {}x{}; delete it to render it again",
-                                   ref.width, ref.height, s.width, s.height));
-    run.rel_mse = compare_images({"", s.width, s.height, 4, film.resolve_rgba()}, ref).all.rel_mse;
-  }
-  run.triangles = p.scene->triangle_count();
-  run.bvh_seconds = p.scene->build_seconds();
-  run.render_seconds = stats.seconds;
-  run.samples = stats.samples;
-  run.camera_rays = stats.rays.camera;
-  run.extension_rays = stats.rays.extension;
-  run.shadow_rays = stats.rays.shadow;
-  return run;
+  return with_bench_scene(o, path, [&](const PreparedRender& p) {
+    const RenderSettings& s = p.settings;
+    const auto [film, stats] = render_film(p, s);
+    BenchRun run;
+    rusage usage{};
+    if (::getrusage(RUSAGE_SELF, &usage) == 0) run.peak_mb = double(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+    if (!reference.empty()) {
+      const ImageDesc ref = read_image_file(reference, ColorSpace::Linear);
+      if (ref.width != s.width || ref.height != s.height)
+        throw InputError(reference, "image size",
+                         fmt::format("the reference is {}x{}, the bench renders {}x{}; delete it to render it again",
+                                     ref.width, ref.height, s.width, s.height));
+      run.rel_mse = compare_images({"", s.width, s.height, 4, film.resolve_rgba()}, ref).all.rel_mse;
+    }
+    run.triangles = p.scene->triangle_count();
+    run.bvh_seconds = p.scene->build_seconds();
+    run.render_seconds = stats.seconds;
+    run.samples = stats.samples;
+    run.camera_rays = stats.rays.camera;
+    run.extension_rays = stats.rays.extension;
+    run.shadow_rays = stats.rays.shadow;
+    return run;
+  });
 }
 
 // Renders the converged image a scene's error is measured against, at --reference-spp with the
 // Sobol sampler (the same reference for every --sampler) and another seed than the timed renders,
 // so their errors are independent.
 void render_reference(const BenchOptions& o, const std::string& path, const std::string& reference) {
-  PreparedRender p = prepare_render(bench_render_options(o, path));
-  std::optional<tbb::global_control> limit;
-  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-  build_scene(p, true);
-  RenderSettings rs = p.settings;
-  rs.spp = o.reference_spp;
-  rs.sampler = "sobol";
-  rs.seed = hash_values(p.settings.seed, 0x5eedull);
-  Film film(rs.width, rs.height);
-  const RenderStats stats = render(*p.scene, Camera(p.camera, rs.width, rs.height), *make_integrator(rs), rs, film);
-  std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
-  attributes.push_back({"prism/scene", p.scene_path});
-  write_exr(reference, rs.width, rs.height, film.resolve_rgba(), attributes);
+  with_bench_scene(o, path, [&](const PreparedRender& p) {
+    RenderSettings rs = p.settings;
+    rs.spp = o.reference_spp;
+    rs.sampler = "sobol";
+    rs.seed = hash_values(p.settings.seed, 0x5eedull);
+    const auto [film, stats] = render_film(p, rs);
+    std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
+    attributes.push_back({"prism/scene", p.scene_path});
+    write_exr(reference, rs.width, rs.height, film.resolve_rgba(), attributes);
+  });
 }
 
 // Runs `work` in a child process, so a render's peak memory is its own and a failing scene cannot

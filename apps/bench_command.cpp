@@ -24,9 +24,7 @@
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
 #include "io/bench_runs.h"
-#include "io/exr_writer.h"
 #include "io/image_decode.h"
-#include "io/render_attributes.h"
 
 namespace prism {
 namespace {
@@ -89,7 +87,7 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path, const std::
         throw InputError(reference, "image size",
                          fmt::format("the reference is {}x{}, the bench renders {}x{}; delete it to render it again",
                                      ref.width, ref.height, s.width, s.height));
-      run.rel_mse = compare_images({"", s.width, s.height, 4, film.resolve_rgba()}, ref).all.rel_mse;
+      run.rel_mse = compare_images(film_image(film), ref).all.rel_mse;
     }
     run.triangles = p.scene->triangle_count();
     run.bvh_seconds = p.scene->build_seconds();
@@ -107,14 +105,10 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path, const std::
 // so their errors are independent.
 void render_reference(const BenchOptions& o, const std::string& path, const std::string& reference) {
   with_bench_scene(o, path, [&](const PreparedRender& p) {
-    RenderSettings rs = p.settings;
-    rs.spp = o.reference_spp;
+    RenderSettings rs = reference_settings(p.settings, o.reference_spp);
     rs.sampler = "sobol";
-    rs.seed = hash_values(p.settings.seed, 0x5eedull);
     const auto [film, stats] = render_film(p, rs);
-    std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
-    attributes.push_back({"prism/scene", p.scene_path});
-    write_exr(reference, rs.width, rs.height, film.resolve_rgba(), attributes);
+    write_reference(reference, p, rs, stats, film);
   });
 }
 

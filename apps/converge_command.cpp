@@ -10,15 +10,12 @@
 
 #include "apps/command_errors.h"
 #include "apps/render_setup.h"
-#include "core/hash.h"
 #include "core/image_metrics.h"
 #include "core/renderer.h"
 #include "integrators/integrator_factory.h"
 #include "io/atomic_file.h"
-#include "io/exr_writer.h"
 #include "io/image_decode.h"
 #include "io/loglog_plot.h"
-#include "io/render_attributes.h"
 
 namespace prism {
 namespace {
@@ -72,8 +69,6 @@ std::vector<double> noise_list(const std::string& text) {
       },
       std::greater<>());
 }
-
-ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
 
 // The most samples a pixel may take under a --times budget (the budget, not this, ends the
 // render) and under a --noise target (as `prism render --noise` allows by default).
@@ -144,16 +139,12 @@ int converge(const ConvergeOptions& o) {
 
   if (!reference) {
     // prism's own converged image, with another seed than the series so their errors are independent.
-    RenderSettings rs = p.settings;
-    rs.spp = o.reference_spp;
-    rs.seed = hash_values(p.settings.seed, 0x5eedull);
+    const RenderSettings rs = reference_settings(p.settings, o.reference_spp);
     const std::string ref_path = (dir / "reference.exr").string();
     if (!ro.quiet) fmt::print("rendering the reference: {} spp, {} sampler -> {}\n", rs.spp, rs.sampler, ref_path);
     Film film(rs.width, rs.height);
     const RenderStats stats = render(*p.scene, camera, *make_integrator(rs), rs, film);
-    std::vector<ExrAttribute> attributes = render_attributes(rs, stats);
-    attributes.push_back({"prism/scene", p.scene_path});
-    write_exr(ref_path, rs.width, rs.height, film.resolve_rgba(), attributes);
+    write_reference(ref_path, p, rs, stats, film);
     reference = film_image(film);
   }
 

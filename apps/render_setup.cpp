@@ -7,11 +7,14 @@
 #include <stdexcept>
 
 #include "apps/command_errors.h"
+#include "core/hash.h"
 #include "core/sample_schedule.h"
 #include "core/sampler_factory.h"
 #include "integrators/integrator_factory.h"
 #include "io/duration_text.h"
 #include "io/errors.h"
+#include "io/exr_writer.h"
+#include "io/render_attributes.h"
 #include "materials/material_eval.h"
 
 namespace prism {
@@ -170,5 +173,20 @@ void build_scene(PreparedRender& p, bool quiet) {
     fmt::print(stderr, "prism: warning: the scene has no lights (emitting surfaces or punctual lights), so its colour "
                        "channels render black (give one with --env; alpha still shows coverage)\n");
 }
+
+RenderSettings reference_settings(RenderSettings settings, int spp) {
+  settings.spp = spp;
+  settings.seed = hash_values(settings.seed, 0x5eedull);
+  return settings;
+}
+
+void write_reference(const std::string& path, const PreparedRender& render, const RenderSettings& settings,
+                     const RenderStats& stats, const Film& film) {
+  std::vector<ExrAttribute> attributes = render_attributes(settings, stats);
+  attributes.push_back({"prism/scene", render.scene_path});
+  write_exr(path, settings.width, settings.height, film.resolve_rgba(), attributes);
+}
+
+ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
 
 }  // namespace prism

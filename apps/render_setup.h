@@ -8,6 +8,8 @@
 
 #include "apps/render_command.h"
 #include "core/camera.h"
+#include "core/film.h"
+#include "core/renderer.h"
 #include "core/render_settings.h"
 #include "core/scene.h"
 #include "io/job_file.h"
@@ -34,6 +36,16 @@ RenderOptions job_render_options(JobFile job, const std::string& list_file, cons
 
 // Builds the Embree scene (and warns, unless quiet, when nothing emits light).
 void build_scene(PreparedRender& render, bool quiet);
+
+// The settings of a converged reference for renders made with `settings`: `spp` samples and
+// another seed, so the reference's error is independent of theirs (converge and bench).
+RenderSettings reference_settings(RenderSettings settings, int spp);
+// Writes a reference render of `render`'s scene to `path` (OpenEXR), with the settings and
+// statistics that made it in its header.
+void write_reference(const std::string& path, const PreparedRender& render, const RenderSettings& settings,
+                     const RenderStats& stats, const Film& film);
+// A film's resolved RGBA as an image, to compare with a reference.
+ImageDesc film_image(const Film& film);
 
 // 12.3k, 4.5M, 1.20G: counts for summaries.
 std::string si(double v);

@@ -19,6 +19,9 @@ struct RenderSettings {
   int rr_start_depth = 4;      // Russian roulette from this bounce on
   float clamp_indirect = 0;    // > 0: each sample's indirect light is scaled down to this maximum
                                // component (biased, removes fireflies); 0 = off
+  // The share of bounce directions at reflecting surfaces aimed at caustic casters (smooth metal
+  // and glass) in view, MIS-weighted with the BSDF's own (unbiased); 0 = off.
+  float caster_share = 0.25f;
   std::string sampler = "sobol";
   std::string light_sampler = "tree";  // how next-event estimation picks a light: tree or power
   // Budgets beyond a fixed spp, stopping at whichever is met first (0 = not set):
@@ -48,7 +51,7 @@ struct RenderSettings {
 // Settings given by a job file or on the command line; unset fields leave the settings alone.
 struct RenderSettingsOverride {
   std::optional<int> width, height, spp, max_depth, max_diffuse_depth, rr_start_depth, min_spp, threads;
-  std::optional<float> clamp_indirect;
+  std::optional<float> clamp_indirect, caster_share;
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
   std::optional<std::string> camera, integrator, sampler, light_sampler, allocation;
@@ -65,6 +68,7 @@ struct RenderSettingsOverride {
     if (rr_start_depth) s.rr_start_depth = *rr_start_depth;
     if (min_spp) s.min_spp = *min_spp;
     if (clamp_indirect) s.clamp_indirect = *clamp_indirect;
+    if (caster_share) s.caster_share = *caster_share;
     if (time_budget) s.time_budget = *time_budget;
     if (noise_target) s.noise_target = *noise_target;
     if (threads) s.threads = *threads;

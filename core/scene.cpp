@@ -229,6 +229,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
   tsan_acquire(&sphere_geometry_);  // the build threads' sphere_bounds calls are over
   throw_on_embree_error("building the scene of " + desc_.source);
   emitters_ = Emitters(desc_, lights);
+  casters_ = CausticCasters(desc_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -1,4 +1,5 @@
-// Scene: the Embree acceleration structure over a SceneDesc, with hit reconstruction and emitters.
+// Scene: the Embree acceleration structure over a SceneDesc, with hit reconstruction, emitters and
+// caustic casters.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -6,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/caustic_casters.h"
 #include "core/embree_rays.h"
 #include "core/emitters.h"
 #include "core/ray.h"
@@ -54,6 +56,7 @@ class Scene {
   // The world position of the coordinates' origin: world = scene coordinates + origin().
   const Vec3& origin() const { return origin_; }
   const Emitters& emitters() const { return emitters_; }
+  const CausticCasters& casters() const { return casters_; }
   const SceneFeatures& features() const { return features_; }
   double build_seconds() const { return build_seconds_; }
   // Triangles in the world, counting each instance of a mesh.
@@ -103,6 +106,7 @@ class Scene {
   unsigned sphere_geom_id_ = RTC_INVALID_GEOMETRY_ID;
   SphereGeometry sphere_geometry_;
   Emitters emitters_;
+  CausticCasters casters_;
   AlphaFunction alpha_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_filters_;
   double build_seconds_ = 0;

@@ -29,7 +29,7 @@ LightSampling light_sampling(const std::string& name) {
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings) {
   if (settings.integrator == "path")
     return std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth, settings.max_diffuse_depth,
-                                            settings.clamp_indirect);
+                                            settings.clamp_indirect, settings.caster_share);
   if (settings.integrator == "whitted") return std::make_unique<WhittedIntegrator>(settings.max_depth);
   throw std::invalid_argument("unknown integrator '" + settings.integrator + "' (known: " + joined(integrator_names()) +
                               ")");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/spawn.h"
 #include "integrators/first_hit_aovs.h"
@@ -41,12 +42,37 @@ struct PathIntegrator::ShadowQuery {
   Rgb* target = nullptr;
 };
 
+// How a vertex draws its next direction: from the BSDF, or with probability `share` aimed at one of
+// the caustic casters in view, so that paths through smooth metal and glass to a light (which
+// next-event estimation cannot reach) are found far more often. The two are combined by one-sample
+// MIS with the balance heuristic (Veach 1997, §9.2.4): whichever drew it, a direction is weighted by
+// the mixture's density, which stays unbiased and keeps each strategy's strengths.
+struct PathIntegrator::Bounce {
+  std::optional<CasterView> casters;
+  float share = 0;  // 0: the BSDF alone
+
+  float pdf(float bsdf_pdf, const Vec3& w) const {
+    return share > 0 ? (1 - share) * bsdf_pdf + share * casters->pdf(w) : bsdf_pdf;
+  }
+};
+
+// Aiming is for surfaces with a non-delta lobe that only reflect: a transmitting one would need its
+// crossing (media, eta) worked out for a direction it did not sample.
+PathIntegrator::Bounce PathIntegrator::bounce_strategy(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf) const {
+  Bounce b;
+  if (!(caster_share_ > 0) || scene.casters().empty() || bsdf.is_delta() || !bsdf.reflects_only()) return b;
+  scene.casters().view(hit.p, bsdf.normal(), b.casters.emplace());
+  if (!b.casters->empty()) b.share = caster_share_;
+  return b;
+}
+
 // Light arriving at `hit` from one sampled light, through the BSDF, attenuated by the medium on
 // the light's side of the surface, weighted by MIS against BSDF sampling (area lights); whether
 // the light is visible is left to the shadow ray.
 PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf,
-                                                         const MediumStack& media, const MaterialDesc& material,
-                                                         bool from_front, float u_spare, Vec2 u_point) const {
+                                                         const Bounce& bounce, const MediumStack& media,
+                                                         const MaterialDesc& material, bool from_front, float u_spare,
+                                                         Vec2 u_point) const {
   const SceneDesc& desc = scene.desc();
   ShadowQuery q;
   const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_spare, u_point);
@@ -75,7 +101,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     sigma = beyond.sigma_a();
   }
   const Rgb tr = beer_lambert(sigma, dist);
-  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, f.pdf);
+  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bounce.pdf(f.pdf, wi));
   q.contribution = f.f_cos * incident * tr * (weight / ls.pdf);
   q.cast = true;
   return q;
@@ -137,9 +163,11 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   const bool from_front = dot(wo, hit.ng) > 0;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
+  const Bounce bounce = bounce_strategy(scene, hit, bsdf);
+
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    shadow = direct_light(scene, hit, bsdf, path.media, material, from_front, u.light_spare, u.light_point);
+    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u.light_spare, u.light_point);
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;
@@ -147,8 +175,25 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     }
   }
 
-  const auto bs = bsdf.sample(u.lobe, u.direction);
+  // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
+  std::optional<BsdfSample> bs;
+  if (bounce.share > 0 && u.lobe < bounce.share) {
+    bs.emplace();
+    bs->wi = bounce.casters->sample(u.lobe / bounce.share, u.direction);
+    const Bsdf::Value v = bsdf.evaluate(bs->wi);
+    bs->f_cos = v.f_cos;
+    bs->pdf = v.pdf;
+  } else {
+    const float u_lobe =
+        bounce.share > 0 ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f) : u.lobe;
+    bs = bsdf.sample(u_lobe, u.direction);
+  }
   if (!bs) return false;
+  if (bounce.share > 0) {
+    // A delta lobe's direction is one the casters' cones draw with probability 0.
+    bs->pdf = bs->delta ? (1 - bounce.share) * bs->pdf : bounce.pdf(bs->pdf, bs->wi);
+    if (is_black(bs->f_cos) || !(bs->pdf > 0)) return false;
+  }
   beta *= bs->f_cos / bs->pdf;
   path.prev_bsdf_pdf = bs->pdf;
   path.prev_delta = bs->delta;

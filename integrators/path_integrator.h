@@ -12,13 +12,17 @@ class PathIntegrator final : public Integrator {
   // max_depth: bounces (0 = directly visible emission only); Russian roulette starts at
   // bounce rr_start_depth; max_diffuse_depth limits non-delta bounces (-1: no limit of its own);
   // clamp_indirect > 0 scales each sample's indirect light (after two or more scattering events)
-  // down to that maximum component, trading bias for fewer fireflies. How next-event estimation
-  // chooses a light is the scene's (its Emitters were built for one light sampler).
-  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1, float clamp_indirect = 0)
+  // down to that maximum component, trading bias for fewer fireflies. caster_share > 0 aims that
+  // share of the bounce directions at reflecting surfaces toward the scene's caustic casters
+  // (smooth metal and glass, core/caustic_casters.h) where there are any in view. How next-event
+  // estimation chooses a light is the scene's (its Emitters were built for one light sampler).
+  PathIntegrator(int max_depth, int rr_start_depth, int max_diffuse_depth = -1, float clamp_indirect = 0,
+                 float caster_share = 0)
       : max_depth_(max_depth),
         rr_start_depth_(rr_start_depth),
         max_diffuse_depth_(max_diffuse_depth),
-        clamp_indirect_(clamp_indirect) {}
+        clamp_indirect_(clamp_indirect),
+        caster_share_(caster_share) {}
 
   RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
                     AovSample* aov = nullptr) const override;
@@ -30,6 +34,7 @@ class PathIntegrator final : public Integrator {
  private:
   struct Path;
   struct ShadowQuery;
+  struct Bounce;
 
   // One bounce of a path at the surface its ray found (or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
@@ -37,14 +42,18 @@ class PathIntegrator final : public Integrator {
   bool advance(const Scene& scene, Path& path, const SurfaceHit* hit, ShadowQuery& shadow, RayCounters& counters) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
-  ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const MediumStack& media,
-                           const MaterialDesc& material, bool from_front, float u_spare, Vec2 u_point) const;
+  ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,
+                           const MediumStack& media, const MaterialDesc& material, bool from_front, float u_spare,
+                           Vec2 u_point) const;
+  // How the vertex at `hit` draws its next direction: from the BSDF alone, or also aimed at casters.
+  Bounce bounce_strategy(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf) const;
   RadianceSample finish(Path& path) const;
 
   int max_depth_;
   int rr_start_depth_;
   int max_diffuse_depth_;
   float clamp_indirect_;
+  float caster_share_;
 };
 
 }  // namespace prism

@@ -17,6 +17,7 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
       {"prism/maxDiffuseDepth", s.max_diffuse_depth},
       {"prism/rrStartDepth", s.rr_start_depth},
       {"prism/clampIndirect", double(s.clamp_indirect)},
+      {"prism/casterShare", double(s.caster_share)},
       {"prism/budget", budget},
       {"prism/spp", int(stats.spp_max)},
       {"prism/sppMin", int(stats.spp_min)},

@@ -46,6 +46,8 @@ class Bsdf {
   const Vec3& normal() const { return frame_.n; }
   // True when every lobe with weight is a delta lobe: next-event estimation cannot help.
   bool is_delta() const { return delta_only_; }
+  // True when no lobe transmits: every direction it scatters to stays on wo's side.
+  bool reflects_only() const { return weight_[kDielectric] == 0; }
 
  private:
   enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };

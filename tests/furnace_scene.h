@@ -55,9 +55,9 @@ inline FurnaceRender render_furnace(const RenderSettings& settings) {
 
 // Renders a small image from inside the enclosure with each sampler; each pixel mean is an
 // independent estimate (pixels are scrambled independently), so the image mean's standard error
-// is the spread of pixel means over sqrt(pixels).
+// is the spread of pixel means over sqrt(pixels). caster_share is the path tracer's.
 inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo, int max_depth, int rr_start,
-                           double expected) {
+                           double expected, float caster_share = 0) {
   const Scene scene(std::move(desc));
   for (const std::string& sampler : sampler_names()) {
     RenderSettings settings;
@@ -68,7 +68,7 @@ inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo,
     settings.seed = 1234;
     settings.sampler = sampler;
     Film film(settings.width, settings.height);
-    const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+    const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth, -1, 0, caster_share);
     const RenderStats stats = render(scene, Camera(cam, settings.width, settings.height), integrator, settings, film);
     EXPECT_EQ(stats.nonfinite_samples, 0u);
     for (int c = 0; c < 3; ++c) {
@@ -82,7 +82,8 @@ inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo,
       // The float rounding of a sum of ~d terms bounds how exact even a noiseless estimate is.
       const double tolerance = kSigmas * pixels.standard_error() + 1e-5 * expected;
       EXPECT_NEAR(pixels.mean(), expected, tolerance) << sampler << " sampler, channel " << c << ", albedo "
-                                                      << albedo << ", depth " << max_depth << ", rr from " << rr_start;
+                                                      << albedo << ", depth " << max_depth << ", rr from " << rr_start
+                                                      << ", caster share " << caster_share;
     }
   }
 }

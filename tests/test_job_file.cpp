@@ -34,7 +34,8 @@ TEST(JobFile, ReadsSettingsAndResolvesPathsAgainstItsFolder) {
 TEST(JobFile, BudgetsAndQualityKnobs) {
   Diagnostics diag;
   const JobFile job = parse(R"({"sampler": "independent", "time": "1m30s", "noise": 0.01, "min_spp": 8,
-                                "rr_start_depth": 5, "clamp_indirect": 10, "allocation": "error"})", diag);
+                                "rr_start_depth": 5, "clamp_indirect": 10, "allocation": "error",
+                                "caster_share": 0.5})", diag);
   RenderSettings s;
   job.settings.apply_to(s);
   EXPECT_EQ(s.sampler, "independent");
@@ -43,6 +44,7 @@ TEST(JobFile, BudgetsAndQualityKnobs) {
   EXPECT_EQ(s.min_spp, 8);
   EXPECT_EQ(s.rr_start_depth, 5);
   EXPECT_EQ(s.clamp_indirect, 10.0f);
+  EXPECT_EQ(s.caster_share, 0.5f);
   EXPECT_EQ(s.allocation, "error");
   EXPECT_TRUE(diag.lines().empty());
 }

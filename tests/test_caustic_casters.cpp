@@ -1,0 +1,127 @@
+// Caustic casters: which objects are aimed at, the density of the aimed directions, and that a
+// path tracer aiming at them keeps every mean where it was.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/caustic_casters.h"
+#include "core/constants.h"
+#include "core/pcg32.h"
+#include "core/sampling.h"
+#include "furnace_scene.h"
+#include "scene_builders.h"
+#include "statistics.h"
+
+namespace prism {
+namespace {
+
+int add_metal(SceneDesc& desc, float roughness) {
+  MaterialDesc m;
+  m.name = "metal " + std::to_string(desc.materials.size());
+  m.base_color = Rgb(0.9f);
+  m.metallic = 1;
+  m.roughness = roughness;
+  desc.materials.push_back(m);
+  return static_cast<int>(desc.materials.size()) - 1;
+}
+
+// Directions from the origin toward a caster of centre c: the pdf is positive along c and zero
+// straight away from it.
+bool aims_at(const CausticCasters& casters, const Vec3& c) {
+  CasterView v;
+  casters.view(Vec3(0.0f), normalize(c), v);
+  return v.pdf(normalize(c)) > 0 && v.pdf(-normalize(c)) == 0;
+}
+
+TEST(CausticCasters, AreSmoothMetalAndGlassOnlyPlacedInTheWorld) {
+  SceneDesc desc;
+  test::add_quad(desc, Vec3(-5, -5, -1), Vec3(10, 0, 0), Vec3(0, 10, 0), test::add_material(desc, Rgb(0.5f)));
+  test::add_sphere(desc, Vec3(0, 0, 5), 0.5f, add_metal(desc, 0.0f));          // a mirror: caster
+  test::add_sphere(desc, Vec3(5, 0, 0), 0.5f, add_metal(desc, 0.6f));          // rough metal: not
+  test::add_sphere(desc, Vec3(0, 5, 0), 0.5f, test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, false, 0.5f));  // rough glass
+  // A glass box about the origin, placed at (0, -6, 0) by its instance: a caster there.
+  const int glass = test::add_glass(desc, 1.5f);
+  test::add_box(desc, Vec3(-0.5f), Vec3(0.5f), glass);
+  desc.instances.back().object_to_world = Transform::translate(Vec3(0, -6, 0));
+  const CausticCasters casters(desc);
+  EXPECT_EQ(casters.size(), 2u);
+  EXPECT_TRUE(aims_at(casters, Vec3(0, 0, 5)));
+  EXPECT_TRUE(aims_at(casters, Vec3(0, -6, 0)));
+  EXPECT_FALSE(aims_at(casters, Vec3(5, 0, 0)));
+  EXPECT_FALSE(aims_at(casters, Vec3(0, 5, 0)));
+  EXPECT_FALSE(aims_at(casters, Vec3(-5, 0, -1)));
+  EXPECT_TRUE(CausticCasters::is_caster(desc.material(glass)));
+}
+
+TEST(CasterView, TakesConesThatAreNarrowAndAboveTheSurface) {
+  SceneDesc desc;
+  test::add_sphere(desc, Vec3(0, 0, 2), 0.5f, add_metal(desc, 0.0f));
+  const CausticCasters casters(desc);
+  auto cones = [&](const Vec3& p, const Vec3& n) {
+    CasterView v;
+    casters.view(p, n, v);
+    return v.size();
+  };
+  EXPECT_EQ(cones(Vec3(0, 0, 0), Vec3(0, 0, 1)), 1);     // sin^2 = 1/16
+  EXPECT_EQ(cones(Vec3(0, 0, 1.25f), Vec3(0, 0, 1)), 1);  // sin^2 = 0.44: under 45 degrees
+  EXPECT_EQ(cones(Vec3(0, 0, 1.35f), Vec3(0, 0, 1)), 0);  // sin^2 = 0.59: wide enough for the BSDF
+  EXPECT_EQ(cones(Vec3(0, 0, 1.8f), Vec3(0, 0, 1)), 0);  // inside the sphere
+  EXPECT_EQ(cones(Vec3(0, 0, 0), Vec3(0, 0, -1)), 0);    // wholly below the tangent plane
+  EXPECT_EQ(cones(Vec3(0, 0, 0), Vec3(1, 0, 0)), 1);     // half above it
+}
+
+TEST(CasterView, DensityIntegratesToOneAndMatchesWhereItsSamplesFall) {
+  SceneDesc desc;
+  const int mirror = add_metal(desc, 0.0f);
+  test::add_sphere(desc, Vec3(0, 0, 2), 0.6f, mirror);
+  test::add_sphere(desc, Vec3(0.5f, 0.2f, 2.5f), 0.4f, mirror);  // its cone overlaps the first
+  test::add_sphere(desc, Vec3(-3, 1, 0.5f), 0.3f, mirror);
+  const CausticCasters casters(desc);
+  CasterView v;
+  casters.view(Vec3(0.0f), Vec3(0, 0, 1), v);
+  ASSERT_EQ(v.size(), 3);
+  // Region R: directions with x > 0.1. P(sample in R) must equal the integral of pdf over R.
+  auto in_region = [](const Vec3& w) { return w.x > 0.1f; };
+  Pcg32 rng(11, 12);
+  test::RunningStats total, region_integral, region_hits;
+  const int n = 1 << 20;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 u = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    const double f = 4.0 * kPi * v.pdf(u);
+    total.add(f);
+    region_integral.add(in_region(u) ? f : 0.0);
+    const Vec3 w = v.sample(rng.next_float(), {rng.next_float(), rng.next_float()});
+    ASSERT_NEAR(length(w), 1.0f, 1e-5f);
+    ASSERT_GT(v.pdf(w), 0.0f) << "a sample outside every cone";
+    region_hits.add(in_region(w) ? 1.0 : 0.0);
+  }
+  EXPECT_NEAR(total.mean(), 1.0, test::kSigmas * total.standard_error());
+  const double se = std::hypot(region_integral.standard_error(), region_hits.standard_error());
+  EXPECT_GT(region_hits.mean(), 0.05);
+  EXPECT_NEAR(region_hits.mean(), region_integral.mean(), test::kSigmas * se);
+}
+
+TEST(CasterAiming, KeepsTheFurnaceExact) {
+  // The furnace box (emission 1, albedo 0.5, radiance 2 everywhere) with a perfect mirror sphere
+  // and a lossless glass sphere in it: they change no radiance, so every estimate's mean stays 2
+  // whatever share of the bounces is aimed at them. Deep paths (Russian roulette from bounce 1)
+  // make the depth limit's cut negligible.
+  SceneDesc desc = test::furnace_box(1.0, 0.5);
+  MaterialDesc mirror;
+  mirror.name = "perfect mirror";
+  mirror.base_color = Rgb(1.0f);
+  mirror.metallic = 1;
+  mirror.roughness = 0;
+  desc.materials.push_back(mirror);
+  test::add_sphere(desc, Vec3(0.45f, 0.1f, -0.8f), 0.25f, int(desc.materials.size()) - 1);
+  test::add_sphere(desc, Vec3(-0.3f, 0.35f, -0.9f), 0.3f, test::add_glass(desc, 1.5f));
+  ASSERT_EQ(CausticCasters(desc).size(), 2u);
+  const int depth = 64;
+  for (float share : {0.0f, 0.5f})
+    test::expect_furnace(desc, test::furnace_camera(Vec3(0.1f)), 0.5, depth, 1, test::furnace_radiance(1.0, 0.5, depth),
+                         share);
+}
+
+}  // namespace
+}  // namespace prism

@@ -13,7 +13,10 @@ namespace prism {
 // direction uniformly inside it; pdf() is the density of that draw over all the cones.
 class CasterView {
  public:
-  static constexpr int kMaxCones = 16;  // the first this many casters that qualify, in scene order
+  static constexpr int kMaxCones = 16;  // the first this many that qualify (largest first)
+
+  // Empty. User-provided, so that a view made at every vertex does not zero its arrays first.
+  CasterView() {}
 
   bool empty() const { return count_ == 0; }
   int size() const { return count_; }

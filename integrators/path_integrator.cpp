@@ -58,12 +58,10 @@ struct PathIntegrator::Bounce {
 
 // Aiming is for surfaces with a non-delta lobe that only reflect: a transmitting one would need its
 // crossing (media, eta) worked out for a direction it did not sample.
-PathIntegrator::Bounce PathIntegrator::bounce_strategy(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf) const {
-  Bounce b;
-  if (!(caster_share_ > 0) || scene.casters().empty() || bsdf.is_delta() || !bsdf.reflects_only()) return b;
+void PathIntegrator::choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& b) const {
+  if (!(caster_share_ > 0) || scene.casters().empty() || bsdf.is_delta() || !bsdf.reflects_only()) return;
   scene.casters().view(hit.p, bsdf.normal(), b.casters.emplace());
   if (!b.casters->empty()) b.share = caster_share_;
-  return b;
 }
 
 // Light arriving at `hit` from one sampled light, through the BSDF, attenuated by the medium on
@@ -163,7 +161,8 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   const bool from_front = dot(wo, hit.ng) > 0;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
-  const Bounce bounce = bounce_strategy(scene, hit, bsdf);
+  Bounce bounce;
+  choose_bounce(scene, hit, bsdf, bounce);
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {

@@ -46,7 +46,8 @@ class PathIntegrator final : public Integrator {
                            const MediumStack& media, const MaterialDesc& material, bool from_front, float u_spare,
                            Vec2 u_point) const;
   // How the vertex at `hit` draws its next direction: from the BSDF alone, or also aimed at casters.
-  Bounce bounce_strategy(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf) const;
+  // Fills `out` in place (a view of the casters is a few hundred bytes, made at every vertex).
+  void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;
   RadianceSample finish(Path& path) const;
 
   int max_depth_;

@@ -51,6 +51,7 @@ INSTANTIATE_TEST_SUITE_P(
     All, SceneAssets,
     ::testing::Values(Expected{"scenes/cornell-box/cornell-box.gltf", 32, 8, 8, 4, 1},
                       Expected{"scenes/many-lights/many-lights.gltf", 622, 67, 67, 23, 1},
+                      Expected{"scenes/window-room/window-room.gltf", 20, 2, 2, 2, 1},
                       Expected{"Box/Box.glb", 12, 1, 1, 1, 0},
                       Expected{"Duck/Duck.glb", 4212, 1, 1, 1, 1},
                       Expected{"CornellBox_lumrapido/cornell_box.glb", 1936, 7, 7, 5, 0},
@@ -124,6 +125,19 @@ TEST(SceneAssets, CornellGlassHasGlassAMirrorAndAnAbsorbingVolume) {
   ASSERT_GE(tinted, 0);
   EXPECT_TRUE(loaded.scene.materials[tinted].has_volume());
   EXPECT_FLOAT_EQ(loaded.scene.materials[tinted].attenuation_distance, 0.1f);
+  EXPECT_TRUE(diag.empty()) << diag.lines().front();
+}
+
+TEST(SceneAssets, WindowRoomIsLitOnlyThroughAThinGlassPane) {
+  Diagnostics diag;
+  const LoadedScene loaded = load_scene_source(PRISM_SOURCE_DIR "/scenes/window-room/window-room.json", diag);
+  const int glass = loaded.scene.find_material("window_glass");
+  ASSERT_GE(glass, 0);
+  EXPECT_FALSE(loaded.scene.materials[glass].has_volume());  // thin-walled: no refraction
+  const Scene scene{SceneDesc(loaded.scene)};
+  EXPECT_TRUE(scene.emitters().environment().present());
+  EXPECT_EQ(scene.emitters().size(), 0u);      // no lamps: the sky is the only light
+  EXPECT_EQ(scene.casters().size(), 1u);       // the pane
   EXPECT_TRUE(diag.empty()) << diag.lines().front();
 }
 

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
                   "Clamp each sample's indirect light to this maximum (biased; removes fireflies; default 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--caster-share", render.settings.caster_share,
-                  "Share of bounce directions at diffuse and glossy surfaces aimed at smooth metal and glass objects "
+                  "Largest share of bounce directions at diffuse and glossy surfaces aimed at smooth metal and glass objects "
                   "in view, so light focused through them (caustics) is found; unbiased (MIS); 0 = off (default 0.25)")
       ->check(CLI::Range(0.0f, 0.9f));
   cmd->add_option("--seed", render.settings.seed, "Random seed; the same seed gives the same image bits (default 0)");

@@ -21,56 +21,84 @@ bool CausticCasters::is_caster(const MaterialDesc& m) {
 }
 
 CausticCasters::CausticCasters(const SceneDesc& desc) {
+  struct Sphere {
+    Vec3 center;
+    float radius;
+  };
+  std::vector<Sphere> casters;
   for (const InstanceDesc& inst : desc.instances) {
     for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
       if (prim.triangle_count() == 0 || !is_caster(desc.material(prim.material))) continue;
       Bounds3 box;
       for (uint32_t i : prim.indices) box.extend(inst.object_to_world.point(prim.positions[i]));
-      casters_.push_back({(box.lo + box.hi) * 0.5f, 0.5f * length(box.diagonal())});
+      casters.push_back({(box.lo + box.hi) * 0.5f, 0.5f * length(box.diagonal())});
     }
   }
   for (const SphereDesc& s : desc.spheres)
-    if (is_caster(desc.material(s.material))) casters_.push_back({s.center, s.radius});
-  std::erase_if(casters_, [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
+    if (is_caster(desc.material(s.material))) casters.push_back({s.center, s.radius});
+  std::erase_if(casters, [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
   // The largest first (a stable sort: ties keep scene order), and at most kMaxCasters of them.
-  std::stable_sort(casters_.begin(), casters_.end(), [](const Sphere& a, const Sphere& b) { return a.radius > b.radius; });
-  if (casters_.size() > size_t(kMaxCasters)) casters_.resize(size_t(kMaxCasters));
-}
-
-void CausticCasters::view(const Vec3& p, const Vec3& n, CasterView& v) const {
-  v.count_ = 0;
-  for (const Sphere& s : casters_) {
-    if (v.count_ == CasterView::kMaxCones) break;
-    const Vec3 d = s.center - p;
-    const float d2 = length_squared(d);
-    const float r2 = s.radius * s.radius;
-    // Outside the sphere, a cone under 45 degrees, and some of it above the tangent plane: the
-    // cone's axis makes an angle with the plane smaller than its half-angle, dot(n, d) > -r.
-    if (!(r2 < kMaxSin2 * d2) || !(dot(n, d) > -s.radius)) continue;
-    const float inv_dist = 1.0f / std::sqrt(d2);
-    const float sin2 = r2 / d2;
-    const float cos_max = std::sqrt(1.0f - sin2);
-    const float omc = sin2 / (1.0f + cos_max);
-    const int k = v.count_++;
-    v.axis_x_[k] = d.x * inv_dist;
-    v.axis_y_[k] = d.y * inv_dist;
-    v.axis_z_[k] = d.z * inv_dist;
-    v.cos_max_[k] = cos_max;
-    v.one_minus_cos_max_[k] = omc;
-    v.density_[k] = 1.0f / (kTwoPi * omc);
+  std::stable_sort(casters.begin(), casters.end(), [](const Sphere& a, const Sphere& b) { return a.radius > b.radius; });
+  if (casters.size() > size_t(kMaxCasters)) casters.resize(size_t(kMaxCasters));
+  for (const Sphere& c : casters) {
+    cx_.push_back(c.center.x);
+    cy_.push_back(c.center.y);
+    cz_.push_back(c.center.z);
+    radius_.push_back(c.radius);
   }
 }
 
-Vec3 CasterView::sample(float u_pick, Vec2 u_dir) const {
-  const int k = std::min(int(u_pick * float(count_)), count_ - 1);
-  const Vec3 axis(axis_x_[k], axis_y_[k], axis_z_[k]);
+void CausticCasters::view(const Vec3& p, const Vec3& n, CasterView& v) const {
+  const int slots = static_cast<int>(radius_.size());
+  float aimed_sin2[kMaxCasters];  // sin^2 of an aimed cone's half-angle, else 0
+  // No sums in this loop (float sums may not be reordered), so that it vectorises.
+  for (int k = 0; k < slots; ++k) {
+    const float dx = cx_[k] - p.x, dy = cy_[k] - p.y, dz = cz_[k] - p.z;
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    const float r = radius_[k], r2 = r * r;
+    // Outside the sphere, a cone under 45 degrees, and some of it above the tangent plane: the
+    // cone's axis makes an angle with the plane smaller than its half-angle, dot(n, d) > -r.
+    const bool aimed = r2 < kMaxSin2 * d2 && dx * n.x + dy * n.y + dz * n.z > -r;
+    const float sin2 = aimed ? r2 / d2 : kMaxSin2;  // kMaxSin2 keeps the arithmetic finite
+    const float omc = sin2 / (1.0f + std::sqrt(1.0f - sin2));
+    v.dx_[k] = dx;
+    v.dy_[k] = dy;
+    v.dz_[k] = dz;
+    v.edge_[k] = d2 - r2;
+    v.one_minus_cos_max_[k] = omc;
+    v.density_[k] = aimed ? 1.0f / (kTwoPi * omc) : 0.0f;
+    aimed_sin2[k] = aimed ? sin2 : 0.0f;
+  }
+  int count = 0;
+  float coverage = 0;
+  for (int k = 0; k < slots; ++k) {
+    count += aimed_sin2[k] > 0 ? 1 : 0;
+    coverage += aimed_sin2[k];
+  }
+  v.slots_ = slots;
+  v.count_ = count;
+  v.coverage_ = coverage;
+}
+
+Vec3 CasterView::sample(float u_pick, Vec2 u_dir, int* cone) const {
+  // The j-th of the slots that hold a cone.
+  int j = std::min(int(u_pick * float(count_)), count_ - 1), k = 0;
+  for (; k < slots_; ++k)
+    if (density_[k] > 0 && j-- == 0) break;
+  if (cone) *cone = k;
+  const Vec3 axis = normalize(Vec3(dx_[k], dy_[k], dz_[k]));
   return normalize(Frame::from_normal(axis).to_world(sample_uniform_cone(u_dir, one_minus_cos_max_[k])));
 }
 
-float CasterView::pdf(const Vec3& w) const {
+float CasterView::pdf(const Vec3& w, int drawn_in) const {
+  float density[kMaxCasters];  // the cones' terms, summed after the loop so that it vectorises
+  for (int k = 0; k < slots_; ++k) {
+    const float t = w.x * dx_[k] + w.y * dy_[k] + w.z * dz_[k];
+    const bool inside = k == drawn_in || (t > 0 && t * t >= edge_[k]);
+    density[k] = inside ? density_[k] : 0.0f;
+  }
   float sum = 0;
-  for (int k = 0; k < count_; ++k)
-    if (w.x * axis_x_[k] + w.y * axis_y_[k] + w.z * axis_z_[k] >= cos_max_[k]) sum += density_[k];
+  for (int k = 0; k < slots_; ++k) sum += density[k];
   return count_ > 0 ? sum / float(count_) : 0.0f;
 }
 

@@ -13,26 +13,36 @@ namespace prism {
 // direction uniformly inside it; pdf() is the density of that draw over all the cones.
 class CasterView {
  public:
-  static constexpr int kMaxCones = 16;  // the first this many that qualify (largest first)
+  static constexpr int kMaxCasters = 8;
 
   // Empty. User-provided, so that a view made at every vertex does not zero its arrays first.
   CasterView() {}
 
   bool empty() const { return count_ == 0; }
-  int size() const { return count_; }
-  // u_pick chooses the cone, u_dir the direction in it; the result is a unit vector.
-  Vec3 sample(float u_pick, Vec2 u_dir) const;
-  // Solid-angle density of sample() drawing unit direction w.
-  float pdf(const Vec3& w) const;
+  int size() const { return count_; }  // the cones
+  // u_pick chooses the cone (its slot goes to *cone), u_dir the direction in it; the result is a
+  // unit vector.
+  Vec3 sample(float u_pick, Vec2 u_dir, int* cone = nullptr) const;
+  // Solid-angle density of sample() drawing unit direction w. drawn_in: the slot of the cone
+  // sample() drew w in, counted as holding it even where rounding puts w a hair outside its rim
+  // (that cone's density then cannot go missing from w's weight).
+  float pdf(const Vec3& w, int drawn_in = -1) const;
+  // How much of the view the casters fill: the sum of sin^2 of the cones' half-angles (a small
+  // cone's solid angle over pi; overlaps counted twice).
+  float coverage() const { return coverage_; }
 
  private:
   friend class CausticCasters;
-  // Cone k: its unit axis (toward the caster's centre), its half-angle as a cosine, 1 - that
-  // cosine without cancellation, and its density 1 / solid angle. Left uninitialised beyond count_:
-  // a view is made at every vertex of a scene with casters.
-  float axis_x_[kMaxCones], axis_y_[kMaxCones], axis_z_[kMaxCones];
-  float cos_max_[kMaxCones], one_minus_cos_max_[kMaxCones], density_[kMaxCones];
+  // Slot k holds caster k: the vector d from the shading point to its centre, |d|^2 - r^2 (w is in
+  // the cone when dot(w, d) > 0 and dot(w, d)^2 >= that, with no square root), 1 - cos of the
+  // half-angle, and the cone's density 1 / solid angle, 0 when the caster is not worth aiming at
+  // from here. Branch-free loops over the slots, so the compiler can vectorise them. Left
+  // uninitialised beyond slots_: a view is made at every vertex of a scene with casters.
+  float dx_[kMaxCasters], dy_[kMaxCasters], dz_[kMaxCasters], edge_[kMaxCasters];
+  float one_minus_cos_max_[kMaxCasters], density_[kMaxCasters];
+  int slots_ = 0;
   int count_ = 0;
+  float coverage_ = 0;
 };
 
 class CausticCasters {
@@ -42,13 +52,14 @@ class CausticCasters {
   // next-event estimation cannot reach (its shadow rays stop at them). Positions are world space
   // (the instance transforms applied); each caster is bounded by a sphere around its box.
   static constexpr float kMaxRoughness = 0.2f;
-  static constexpr int kMaxCasters = 64;  // the largest, by bounding radius, when there are more
+  // The largest, by bounding radius, when there are more: each costs every vertex a cone.
+  static constexpr int kMaxCasters = CasterView::kMaxCasters;
 
   CausticCasters() = default;
   explicit CausticCasters(const SceneDesc& desc);
 
-  bool empty() const { return casters_.empty(); }
-  size_t size() const { return casters_.size(); }
+  bool empty() const { return radius_.empty(); }
+  size_t size() const { return radius_.size(); }
   // The casters worth aiming at from point p on a surface with unit normal n (the side light is
   // reflected to): those whose bounding sphere subtends a cone of half-angle under 45 degrees (a
   // wider cone is found often enough by the BSDF's own samples, and p is outside the sphere) and
@@ -58,11 +69,8 @@ class CausticCasters {
   static bool is_caster(const MaterialDesc& m);
 
  private:
-  struct Sphere {
-    Vec3 center;
-    float radius;
-  };
-  std::vector<Sphere> casters_;
+  // Each caster's bounding sphere, by component for view()'s vectorised loop.
+  std::vector<float> cx_, cy_, cz_, radius_;
 };
 
 }  // namespace prism

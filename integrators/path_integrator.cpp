@@ -42,17 +42,18 @@ struct PathIntegrator::ShadowQuery {
   Rgb* target = nullptr;
 };
 
-// How a vertex draws its next direction: from the BSDF, or with probability `share` aimed at one of
-// the caustic casters in view, so that paths through smooth metal and glass to a light (which
-// next-event estimation cannot reach) are found far more often. The two are combined by one-sample
+// How a vertex draws its next direction: from the BSDF, or with probability `share` (at most
+// --caster-share) aimed at one of the caustic casters in view, so that paths through smooth metal
+// and glass to a light (which next-event estimation cannot reach) are found far more often. The two are combined by one-sample
 // MIS with the balance heuristic (Veach 1997, §9.2.4): whichever drew it, a direction is weighted by
 // the mixture's density, which stays unbiased and keeps each strategy's strengths.
 struct PathIntegrator::Bounce {
   std::optional<CasterView> casters;
   float share = 0;  // 0: the BSDF alone
 
-  float pdf(float bsdf_pdf, const Vec3& w) const {
-    return share > 0 ? (1 - share) * bsdf_pdf + share * casters->pdf(w) : bsdf_pdf;
+  // drawn_in: the cone an aimed direction was drawn in (CasterView::pdf).
+  float pdf(float bsdf_pdf, const Vec3& w, int drawn_in = -1) const {
+    return share > 0 ? (1 - share) * bsdf_pdf + share * casters->pdf(w, drawn_in) : bsdf_pdf;
   }
 };
 
@@ -61,7 +62,13 @@ struct PathIntegrator::Bounce {
 void PathIntegrator::choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& b) const {
   if (!(caster_share_ > 0) || scene.casters().empty() || bsdf.is_delta() || !bsdf.reflects_only()) return;
   scene.casters().view(hit.p, bsdf.normal(), b.casters.emplace());
-  if (!b.casters->empty()) b.share = caster_share_;
+  // The full share only where the casters fill about 0.5 sr or more of the view (coverage, the sum
+  // of sin^2 of their cones' half-angles, 0.16: one cone of 23 degrees), less in proportion below
+  // that: small casters take few of the BSDF's samples, and a quarter of the samples aimed at them
+  // costs the rest of the integrand more than their caustics gain (docs/PERFORMANCE.md: 64 small
+  // mirror balls). Any share that depends on the vertex alone keeps the estimate unbiased.
+  constexpr float kFullShareCoverage = 0.16f;
+  if (!b.casters->empty()) b.share = caster_share_ * std::min(1.0f, b.casters->coverage() / kFullShareCoverage);
 }
 
 // Light arriving at `hit` from one sampled light, through the BSDF, attenuated by the medium on
@@ -176,9 +183,10 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
 
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
   std::optional<BsdfSample> bs;
+  int cone = -1;  // the caster's cone an aimed direction was drawn in
   if (bounce.share > 0 && u.lobe < bounce.share) {
     bs.emplace();
-    bs->wi = bounce.casters->sample(u.lobe / bounce.share, u.direction);
+    bs->wi = bounce.casters->sample(u.lobe / bounce.share, u.direction, &cone);
     const Bsdf::Value v = bsdf.evaluate(bs->wi);
     bs->f_cos = v.f_cos;
     bs->pdf = v.pdf;
@@ -190,7 +198,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   if (!bs) return false;
   if (bounce.share > 0) {
     // A delta lobe's direction is one the casters' cones draw with probability 0.
-    bs->pdf = bs->delta ? (1 - bounce.share) * bs->pdf : bounce.pdf(bs->pdf, bs->wi);
+    bs->pdf = bs->delta ? (1 - bounce.share) * bs->pdf : bounce.pdf(bs->pdf, bs->wi, cone);
     if (is_black(bs->f_cos) || !(bs->pdf > 0)) return false;
   }
   beta *= bs->f_cos / bs->pdf;

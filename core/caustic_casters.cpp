@@ -11,8 +11,9 @@ namespace prism {
 namespace {
 
 // A cone wider than 45 degrees (sin^2 of its half-angle above 1/2) holds more than 15% of a
-// cosine-weighted hemisphere's samples already: aiming at it buys little.
-constexpr float kMaxSin2 = 0.5f;
+// cosine-weighted hemisphere's samples already: aiming at it buys little. One narrower than a
+// microradian is not worth a direction either, and its density would overflow.
+constexpr float kMaxSin2 = 0.5f, kMinSin2 = 1e-12f;
 
 }  // namespace
 
@@ -36,9 +37,11 @@ CausticCasters::CausticCasters(const SceneDesc& desc) {
   }
   for (const SphereDesc& s : desc.spheres)
     if (is_caster(desc.material(s.material))) casters.push_back({s.center, s.radius});
-  std::erase_if(casters, [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
+  std::erase_if(casters,
+                [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
   // The largest first (a stable sort: ties keep scene order), and at most kMaxCasters of them.
-  std::stable_sort(casters.begin(), casters.end(), [](const Sphere& a, const Sphere& b) { return a.radius > b.radius; });
+  std::stable_sort(casters.begin(), casters.end(),
+                   [](const Sphere& a, const Sphere& b) { return a.radius > b.radius; });
   if (casters.size() > size_t(kMaxCasters)) casters.resize(size_t(kMaxCasters));
   for (const Sphere& c : casters) {
     cx_.push_back(c.center.x);
@@ -56,10 +59,11 @@ void CausticCasters::view(const Vec3& p, const Vec3& n, CasterView& v) const {
     const float dx = cx_[k] - p.x, dy = cy_[k] - p.y, dz = cz_[k] - p.z;
     const float d2 = dx * dx + dy * dy + dz * dz;
     const float r = radius_[k], r2 = r * r;
-    // Outside the sphere, a cone under 45 degrees, and some of it above the tangent plane: the
-    // cone's axis makes an angle with the plane smaller than its half-angle, dot(n, d) > -r.
-    const bool aimed = r2 < kMaxSin2 * d2 && dx * n.x + dy * n.y + dz * n.z > -r;
-    const float sin2 = aimed ? r2 / d2 : kMaxSin2;  // kMaxSin2 keeps the arithmetic finite
+    const float raw_sin2 = r2 / d2;  // +inf at the centre itself: not aimed
+    // Outside the sphere, a cone between a microradian and 45 degrees, and some of it above the
+    // tangent plane: the axis's angle with the plane is under the half-angle, dot(n, d) > -r.
+    const bool aimed = raw_sin2 < kMaxSin2 && raw_sin2 > kMinSin2 && dx * n.x + dy * n.y + dz * n.z > -r;
+    const float sin2 = aimed ? raw_sin2 : kMaxSin2;  // kMaxSin2 keeps the arithmetic finite
     const float omc = sin2 / (1.0f + std::sqrt(1.0f - sin2));
     v.dx_[k] = dx;
     v.dy_[k] = dy;

@@ -44,9 +44,10 @@ struct PathIntegrator::ShadowQuery {
 
 // How a vertex draws its next direction: from the BSDF, or with probability `share` (at most
 // --caster-share) aimed at one of the caustic casters in view, so that paths through smooth metal
-// and glass to a light (which next-event estimation cannot reach) are found far more often. The two are combined by one-sample
-// MIS with the balance heuristic (Veach 1997, §9.2.4): whichever drew it, a direction is weighted by
-// the mixture's density, which stays unbiased and keeps each strategy's strengths.
+// and glass to a light (which next-event estimation cannot reach) are found far more often. The
+// two are combined by one-sample MIS with the balance heuristic (Veach 1997, §9.2.4): whichever
+// drew it, a direction is weighted by the mixture's density, which stays unbiased and keeps each
+// strategy's strengths.
 struct PathIntegrator::Bounce {
   std::optional<CasterView> casters;
   float share = 0;  // 0: the BSDF alone

@@ -1,4 +1,8 @@
-"""What the scene generators share: one glTF buffer filled view by view. Standard library only."""
+"""What the scene generators share: one glTF buffer filled view by view, and meshes of quads in it.
+Standard library only."""
+
+import base64
+import struct
 
 
 class GltfBuffer:
@@ -16,3 +20,34 @@ class GltfBuffer:
         self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(data), "target": target})
         self.data.extend(data)
         return len(self.views) - 1
+
+    def embedded(self):
+        """The glTF "buffers" entry holding the bytes as a data URI."""
+        return {"byteLength": len(self.data),
+                "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(self.data)).decode()}
+
+
+class QuadMeshes:
+    """Meshes of quads, one primitive each, with their accessors and the nodes that place them."""
+
+    def __init__(self, buffer):
+        self.buffer = buffer
+        self.accessors, self.meshes, self.nodes = [], [], []
+
+    def add(self, name, quads, material):
+        """A mesh of the quads (corners in order, two triangles each: 0 1 2 and 0 2 3, 16-bit
+        indices) with `material`, and a node placing it as it is."""
+        positions, indices = [], []
+        for quad in quads:
+            base = len(positions)
+            positions.extend(quad)
+            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
+        pos_view = self.buffer.add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
+        idx_view = self.buffer.add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
+        self.accessors.append({"bufferView": pos_view, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                               "min": [min(p[i] for p in positions) for i in range(3)],
+                               "max": [max(p[i] for p in positions) for i in range(3)]})
+        self.accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        self.meshes.append({"name": name, "primitives": [{"attributes": {"POSITION": len(self.accessors) - 2},
+                                                          "indices": len(self.accessors) - 1, "material": material}]})
+        self.nodes.append({"name": name, "mesh": len(self.meshes) - 1})

@@ -4,15 +4,13 @@ University Program of Computer Graphics (www.graphics.cornell.edu/online/box/dat
 converted from millimetres to metres; and ../cornell-glass/cornell-glass.gltf, the same box
 with the tall block made of tinted, absorbing glass. Standard library only; run it to
 regenerate both files."""
-import base64
 import json
 import math
-import struct
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
+from gltf_buffer import GltfBuffer, QuadMeshes  # noqa: E402  (scenes/gltf_buffer.py)
 
 MM = 0.001  # the published data is in millimetres
 
@@ -100,8 +98,8 @@ def oriented(quad, facing, object_centre):
 
 def build(glass, large_light=False):
     buffer = GltfBuffer()
-    add_view = buffer.add_view
-    accessors, meshes, nodes = [], [], []
+    mesh_list = QuadMeshes(buffer)
+    nodes = mesh_list.nodes
     material_index = {name: i for i, name in enumerate(MATERIALS)}
 
     for name, material, quads, facing in SURFACES:
@@ -109,24 +107,9 @@ def build(glass, large_light=False):
             quads = LARGE_LIGHT
         corners = [p for q in quads for p in q]
         object_centre = centre(corners)
-        positions, indices = [], []
-        for quad in quads:
-            quad = oriented(quad, facing, object_centre)
-            base = len(positions)
-            positions.extend(tuple(c * MM for c in p) for p in quad)
-            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
-        pos_view = add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
-        idx_view = add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
-        accessors.append({
-            "bufferView": pos_view, "componentType": 5126, "count": len(positions), "type": "VEC3",
-            "min": [min(p[i] for p in positions) for i in range(3)],
-            "max": [max(p[i] for p in positions) for i in range(3)],
-        })
-        accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        in_metres = [[tuple(c * MM for c in p) for p in oriented(quad, facing, object_centre)] for quad in quads]
         index = len(MATERIALS) if glass and name == "tall_block" else material_index[material]
-        meshes.append({"name": name, "primitives": [{
-            "attributes": {"POSITION": len(accessors) - 2}, "indices": len(accessors) - 1, "material": index}]})
-        nodes.append({"name": name, "mesh": len(meshes) - 1})
+        mesh_list.add(name, in_metres, index)
 
     # Camera at (278, 273, -800) mm looking down +z: the glTF camera looks down its -Z, so the
     # node turns half a turn about +Y. Film 25 mm behind a 35 mm lens: yfov = 2 atan(12.5 / 35).
@@ -156,14 +139,13 @@ def build(glass, large_light=False):
         "scene": 0,
         "scenes": [{"name": "cornell-glass" if glass else "cornell-box", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
-        "meshes": meshes,
+        "meshes": mesh_list.meshes,
         "materials": materials,
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": 2 * math.atan(12.5 / 35.0), "aspectRatio": 1.0, "znear": 0.01}}],
-        "accessors": accessors,
+        "accessors": mesh_list.accessors,
         "bufferViews": buffer.views,
-        "buffers": [{"byteLength": len(buffer.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}],
+        "buffers": [buffer.embedded()],
     }
 
 

@@ -5,15 +5,13 @@ under a ceiling, among 7 x 7 pillars that hide most lamps from most of the floor
 colour and in strength (over a factor of 8). Each point of the floor is lit mostly by the few lamps
 near it, which choosing lights by power alone cannot know. Lambertian materials only (glTF
 dielectrics with KHR_materials_ior `ior: 1`). Standard library only; run it to regenerate."""
-import base64
 import json
 import math
-import struct
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
+from gltf_buffer import GltfBuffer, QuadMeshes  # noqa: E402  (scenes/gltf_buffer.py)
 
 GRID = 8          # lamps per side
 SPACING = 1.5     # metres between lamps
@@ -80,24 +78,9 @@ def look_at_rotation(eye, target):
 
 def build():
     buffer = GltfBuffer()
-    add_view = buffer.add_view
-    accessors, meshes, nodes, materials = [], [], [], []
-
-    def add_mesh(name, quads, material):
-        positions, indices = [], []
-        for q in quads:
-            base = len(positions)
-            positions.extend(q)
-            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
-        pos = add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
-        idx = add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
-        accessors.append({"bufferView": pos, "componentType": 5126, "count": len(positions), "type": "VEC3",
-                          "min": [min(p[i] for p in positions) for i in range(3)],
-                          "max": [max(p[i] for p in positions) for i in range(3)]})
-        accessors.append({"bufferView": idx, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
-        meshes.append({"name": name, "primitives": [{"attributes": {"POSITION": len(accessors) - 2},
-                                                     "indices": len(accessors) - 1, "material": material}]})
-        nodes.append({"name": name, "mesh": len(meshes) - 1})
+    mesh_list = QuadMeshes(buffer)
+    add_mesh, nodes = mesh_list.add, mesh_list.nodes
+    materials = []
 
     for name, colour in MATERIALS.items():
         materials.append({"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*colour, 1.0],
@@ -138,14 +121,13 @@ def build():
         "scene": 0,
         "scenes": [{"name": "many-lights", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
-        "meshes": meshes,
+        "meshes": mesh_list.meshes,
         "materials": materials,
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": 0.9, "aspectRatio": 1.0, "znear": 0.01}}],
-        "accessors": accessors,
+        "accessors": mesh_list.accessors,
         "bufferViews": buffer.views,
-        "buffers": [{"byteLength": len(buffer.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}],
+        "buffers": [buffer.embedded()],
     }
 
 

@@ -9,14 +9,12 @@ aiming (--caster-share) does the work of a portal. window-room.json adds a const
 Standard library only.
 """
 
-import base64
 import json
-import struct
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
+from gltf_buffer import GltfBuffer, QuadMeshes  # noqa: E402  (scenes/gltf_buffer.py)
 
 X, Y, Z = 4.0, 3.0, 5.0                       # the room spans [0, X] x [0, Y] x [0, Z], +Y up
 WINDOW_Y, WINDOW_Z = (1.0, 2.2), (1.5, 3.5)   # the opening in the wall x = 0
@@ -29,23 +27,8 @@ def left_wall_quad(y0, y1, z0, z1):
 
 def build():
     buffer = GltfBuffer()
-    accessors, meshes, nodes = [], [], []
-
-    def add_mesh(name, quads, material):
-        positions, indices = [], []
-        for quad in quads:
-            base = len(positions)
-            positions.extend(quad)
-            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
-        pos_view = buffer.add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
-        idx_view = buffer.add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
-        accessors.append({"bufferView": pos_view, "componentType": 5126, "count": len(positions), "type": "VEC3",
-                          "min": [min(p[i] for p in positions) for i in range(3)],
-                          "max": [max(p[i] for p in positions) for i in range(3)]})
-        accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
-        meshes.append({"name": name, "primitives": [{"attributes": {"POSITION": len(accessors) - 2},
-                                                     "indices": len(accessors) - 1, "material": material}]})
-        nodes.append({"name": name, "mesh": len(meshes) - 1})
+    mesh_list = QuadMeshes(buffer)
+    add_mesh, nodes = mesh_list.add, mesh_list.nodes
 
     # Every face counter-clockwise seen from inside, so front faces look into the room.
     floor = [(0, 0, 0), (0, 0, Z), (X, 0, Z), (X, 0, 0)]
@@ -79,14 +62,13 @@ def build():
         "scene": 0,
         "scenes": [{"name": "window-room", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
-        "meshes": meshes,
+        "meshes": mesh_list.meshes,
         "materials": materials,
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": 1.0, "aspectRatio": 1.0, "znear": 0.01}}],
-        "accessors": accessors,
+        "accessors": mesh_list.accessors,
         "bufferViews": buffer.views,
-        "buffers": [{"byteLength": len(buffer.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}],
+        "buffers": [buffer.embedded()],
     }
 
 

@@ -197,20 +197,28 @@ int status(const FarmPlan& plan) {
     }
   }
 
-  bool merge_failed = false;
+  bool merge_failed = false, merge_running = false;
   if (last && view.answered()) {
     const SlurmJob* m = find_job(view.jobs, last->merge_job, std::nullopt);
     const std::string state = m ? m->state + (m->reason != "None" && !m->reason.empty() ? " (" + m->reason + ")" : "")
                                 : std::string("unknown to Slurm");
-    merge_failed = !m || !slurm_running(m->state);
+    merge_running = m && slurm_running(m->state);
+    merge_failed = !merge_running;
     fmt::print("merge job {}: {}{}\n", last->merge_job, state,
-               m && slurm_running(m->state) && failed > 0 ? ", waiting on a failed task: it will not run" : "");
+               merge_running && failed > 0 ? ", waiting on a failed task: it will not run" : "");
   }
   size_t complete = 0;
   for (const FarmOutput& o : plan.outputs) {
     const FarmFileState s = farm_file_state(plan, o.output);
     if (s == FarmFileState::Complete) ++complete;
     fmt::print("output {}: {}\n", o.output, s == FarmFileState::Complete ? "complete" : "not written");
+  }
+  // The merge writes each output before its preview and exits after both: complete outputs
+  // while it still runs are not the end of the job.
+  if (complete == plan.outputs.size() && merge_running) {
+    fmt::print("{} output{} complete; merge job {} still running; not finished yet\n", complete,
+               complete == 1 ? "" : "s", last->merge_job);
+    return kExitFarmPending;
   }
   if (complete == plan.outputs.size()) {
     fmt::print("done: {} output{} complete\n", complete, complete == 1 ? "" : "s");

@@ -89,6 +89,17 @@ expect 3 "1 file is not complete: .*f0.exr" "$prism" farm merge frames.farm
 "$prism" farm task frames.farm 0 -q && "$prism" farm merge frames.farm -q || fail "frames failed"
 [ -s f2.png ] || fail "a frame's preview is missing"
 expect 0 "done: 3 outputs complete" "$prism" farm status frames.farm
+# The merge job writes its outputs, then previews, then exits: until Slurm says it ended, status
+# is not done and a poller must not submit again. A stand-in scontrol plays Slurm's part.
+mkdir -p fakebin
+printf '#!/bin/sh\necho "JobId=$4 JobName=prism-merge JobState=$(cat %s/merge-state) Reason=None ExitCode=0:0"\n' \
+  "$work" >fakebin/scontrol && chmod +x fakebin/scontrol
+echo '[{"array_job": "", "tasks": [], "merge_job": "77"}]' >frames.farm/submissions.json
+echo RUNNING >merge-state
+expect 9 "3 outputs complete; merge job 77 still running; not finished" env PATH="$work/fakebin:$PATH" "$prism" farm status frames.farm
+echo COMPLETED >merge-state
+expect 0 "done: 3 outputs complete" env PATH="$work/fakebin:$PATH" "$prism" farm status frames.farm
+rm frames.farm/submissions.json
 sed -i 's/"spp": 4/"spp": 5/' frames.farm/plan.json 2>/dev/null
 sed -i 's/"by": "frames"/"by": "tiles"/' frames.farm/plan.json
 expect 3 "plan.json: \\$\\.id: does not match" "$prism" farm status frames.farm

@@ -38,6 +38,7 @@ SceneFeatures SceneDesc::features() const {
         m.specular_color_texture.present())
       f.textures = true;
     if (m.is_transmissive()) f.transmission = true;
+    if (m.is_thin_sheet()) f.thin_sheets = true;
     if (m.has_alpha()) f.alpha = true;
     if (m.has_volume() && (m.attenuation_distance < std::numeric_limits<float>::infinity()) &&
         min(m.attenuation_color, Rgb(1.0f)) != Rgb(1.0f))

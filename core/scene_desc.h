@@ -75,6 +75,8 @@ struct MaterialDesc {
   bool is_transmissive() const { return transmission > 0 || transmission_texture.present(); }
   // A closed volume whose interior is a medium (refraction, absorption).
   bool has_volume() const { return volume && is_transmissive(); }
+  // Transmits without bounding a volume: an infinitely thin sheet (a window pane, a bubble).
+  bool is_thin_sheet() const { return is_transmissive() && !volume; }
 };
 
 // One triangle list with one material (a glTF primitive). Normals and uvs are per vertex and
@@ -167,6 +169,7 @@ struct SceneFeatures {
   bool punctual_lights = false;
   bool environment = false;
   bool transmission = false;     // some material transmits light
+  bool thin_sheets = false;      // some of them are thin-walled: shadow rays may pass through
   bool absorbing_media = false;  // some volume absorbs
   bool alpha = false;            // some material is cut out (MASK) or partly transparent (BLEND)
 };

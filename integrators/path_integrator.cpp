@@ -7,6 +7,7 @@
 #include "core/spawn.h"
 #include "integrators/first_hit_aovs.h"
 #include "integrators/medium_stack.h"
+#include "integrators/sheet_crossing.h"
 #include "materials/material_eval.h"
 #include "materials/medium.h"
 
@@ -20,12 +21,17 @@ struct PathIntegrator::Path {
   // Light seen directly, after one scattering event, and after more.
   Rgb emitted{0.0f}, direct{0.0f}, indirect{0.0f}, beta{1.0f};
   float eta_scale = 1.0f;  // undoes the 1/eta^2 radiance scaling in Russian roulette decisions
+  // The last scattering vertex, for MIS against next-event estimation: straight crossings of thin
+  // sheets (integrators/sheet_crossing.h) leave these as they are, since a shadow ray crosses them too.
   float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led to the current hit
   bool prev_delta = true;   // the camera ray counts as a delta event: no MIS for what it sees
   Vec3 prev_p;
   Vec3 prev_n;  // the normal the previous vertex's BSDF took cosines about, for light-pick pmfs
+  Vec3 segment_start;  // where the current ray left a surface (a crossing included), for absorption
   MediumStack media;
-  int depth = 0;
+  int depth = 0;     // scattering events so far
+  int vertices = 0;  // surfaces met so far, straight crossings included
+  int crossings = 0;  // thin sheets crossed straight since the last scattering event
   int diffuse_depth = 0;
   bool last_vertex = false;  // the diffuse-bounce limit is reached: only emission (MIS) is left
   float alpha = 0;
@@ -40,6 +46,7 @@ struct PathIntegrator::ShadowQuery {
   Rgb contribution;
   bool cast = false;      // false: there is no shadow ray to trace
   Rgb* target = nullptr;
+  float medium_ior = 1;  // of the medium the ray travels in, for the sheets it may cross
 };
 
 // How a vertex draws its next direction: from the BSDF, or with probability `share` (at most
@@ -101,10 +108,12 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   q.ray = ls.delta || ls.infinite ? spawn_ray_toward(hit, wi, dist) : spawn_ray_between(hit, ls.p, ls.p_error, ls.n);
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();
+  q.medium_ior = media.ior();
   if ((dot(wi, hit.ng) > 0) != from_front && material.has_volume()) {
     MediumStack beyond = media;
     beyond.cross(material, hit.material, from_front);
     sigma = beyond.sigma_a();
+    q.medium_ior = beyond.ior();
   }
   const Rgb tr = beer_lambert(sigma, dist);
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bounce.pdf(f.pdf, wi));
@@ -139,7 +148,8 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     return false;
   }
   const SurfaceHit& hit = *found;
-  if (depth == 0) {
+  const bool first_hit = path.vertices == 0;
+  if (first_hit) {
     path.alpha = 1.0f;
     if (path.aov) report_first_hit(desc, hit, *path.aov);
   }
@@ -147,7 +157,8 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   // origin sits off its surface by the hit's error bound, which far from the world origin is a
   // visible part of a thin slab's thickness.
   if (!path.media.empty())
-    beta *= beer_lambert(path.media.sigma_a(), depth == 0 ? hit.t * length(path.ray.dir) : length(hit.p - path.prev_p));
+    beta *= beer_lambert(path.media.sigma_a(),
+                         first_hit ? hit.t * length(path.ray.dir) : length(hit.p - path.segment_start));
   const Vec3 wo = -normalize(path.ray.dir);
 
   // Emission reached by the previous bounce: weighted against next-event estimation by the
@@ -162,11 +173,23 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
       path.light_after(depth) += beta * Le * w;
     }
   }
-  if (depth >= max_depth_ || path.last_vertex) return false;
-
-  const VertexSamples u = sampler.next_vertex();
   const MaterialDesc& material = desc.material(hit.material);
   const bool from_front = dot(wo, hit.ng) > 0;
+  if (depth >= max_depth_ || path.last_vertex) {
+    // No more scattering, but a straight crossing is none: next-event estimation at the last
+    // vertex counted light beyond sheets, so the path must still reach it for its MIS half.
+    if (!material.is_thin_sheet() || path.crossings >= kMaxSheetCrossings) return false;
+    const Rgb through =
+        make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front)).straight_through();
+    if (is_black(through)) return false;
+    beta *= through;
+    ++path.crossings;
+    leave_surface(path, hit, -wo);
+    ++counters.extension;
+    return true;
+  }
+
+  const VertexSamples u = sampler.next_vertex();
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
   Bounce bounce;
@@ -203,31 +226,47 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (is_black(bs->f_cos) || !(bs->pdf > 0)) return false;
   }
   beta *= bs->f_cos / bs->pdf;
-  path.prev_bsdf_pdf = bs->pdf;
-  path.prev_delta = bs->delta;
-  // Past the diffuse limit the sampled ray still finds the emitter it hits (its MIS half of
-  // direct lighting), then the path ends.
-  if (!bs->delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
-  path.prev_p = hit.p;
-  path.prev_n = bsdf.normal();
-  if (bs->transmission) {
-    path.media.cross(material, hit.material, from_front);
-    if (material.has_volume()) path.eta_scale *= bs->eta * bs->eta;
+  if (bs->delta && bs->transmission && material.is_thin_sheet()) {
+    // Straight through a smooth sheet, as a shadow ray would go: not a scattering event.
+    if (path.crossings >= kMaxSheetCrossings) return false;
+    ++path.crossings;
+  } else {
+    path.crossings = 0;
+    path.prev_bsdf_pdf = bs->pdf;
+    path.prev_delta = bs->delta;
+    // Past the diffuse limit the sampled ray still finds the emitter it hits (its MIS half of
+    // direct lighting), then the path ends.
+    if (!bs->delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
+    path.prev_p = hit.p;
+    path.prev_n = bsdf.normal();
+    if (bs->transmission) {
+      path.media.cross(material, hit.material, from_front);
+      if (material.has_volume()) path.eta_scale *= bs->eta * bs->eta;
+    }
+    path.depth = depth + 1;
   }
-  path.ray = spawn_ray(hit, bs->wi);
-  path.depth = depth + 1;
-
-  // Russian roulette on the throughput without the radiance scaling of refraction, so paths
-  // inside glass are not killed for having crossed into it; survivors are reweighted. A path
-  // survives with probability sqrt(throughput), as in Cycles, not the throughput itself: in the
-  // closed, bright rooms of scenes/ the linear rule's extra variance outweighed the time it saved
-  // (docs/PERFORMANCE.md, "Russian roulette").
-  if (depth + 1 >= rr_start_depth_) {
-    const float q = std::max(0.0f, 1.0f - std::sqrt(max_component(beta) * path.eta_scale));
-    if (u.roulette < q) return false;
-    beta /= 1.0f - q;
-  }
+  leave_surface(path, hit, bs->wi);
+  if (!survives_roulette(path, depth + 1, u.roulette)) return false;
   ++counters.extension;
+  return true;
+}
+
+void PathIntegrator::leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi) {
+  path.ray = spawn_ray(hit, wi);
+  path.segment_start = hit.p;
+  ++path.vertices;
+}
+
+// Russian roulette on the throughput without the radiance scaling of refraction, so paths
+// inside glass are not killed for having crossed into it; survivors are reweighted. A path
+// survives with probability sqrt(throughput), as in Cycles, not the throughput itself: in the
+// closed, bright rooms of scenes/ the linear rule's extra variance outweighed the time it saved
+// (docs/PERFORMANCE.md, "Russian roulette").
+bool PathIntegrator::survives_roulette(Path& path, int depth, float u) const {
+  if (depth < rr_start_depth_) return true;
+  const float q = std::max(0.0f, 1.0f - std::sqrt(max_component(path.beta) * path.eta_scale));
+  if (u < q) return false;
+  path.beta /= 1.0f - q;
   return true;
 }
 
@@ -282,9 +321,10 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   ShadowQuery shadows[kLanes];
   bool found[kLanes], blocked[kLanes];
   int shadow_lane[kLanes];
+  const bool sheets = scene.features().thin_sheets;
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
-    const bool camera = paths[live[0]].depth == 0;  // lanes advance together: all or none are camera rays
+    const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
     scene.intersect_packet(rays, m, hits, found, camera);
 
     int s = 0, still = 0;
@@ -298,8 +338,15 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       if (goes_on) live[still++] = k;
     }
     scene.occluded_packet(shadow_rays, s, blocked);
-    for (int j = 0; j < s; ++j)
-      if (!blocked[j]) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution;
+    for (int j = 0; j < s; ++j) {
+      const ShadowQuery& q = shadows[shadow_lane[j]];
+      if (!blocked[j]) {
+        *q.target += q.contribution;
+      } else if (sheets) {  // blocked, perhaps only by thin sheets that let light through
+        const Rgb through = transmittance_through_sheets(scene, q.ray, q.medium_ior, counters);
+        if (!is_black(through)) *q.target += q.contribution * through;
+      }
+    }
     m = still;
   }
   for (int k = 0; k < n; ++k) out[k] = finish(paths[k]);

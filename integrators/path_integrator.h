@@ -49,6 +49,11 @@ class PathIntegrator final : public Integrator {
   // Fills `out` in place (a view of the casters is a few hundred bytes, made at every vertex).
   void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;
   RadianceSample finish(Path& path) const;
+  // Sends the path on from `hit` along wi, after a bounce or a straight crossing of a thin sheet.
+  static void leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi);
+  // Russian roulette after the path's bounce number `depth` (none before rr_start_depth), with draw u;
+  // false when the path ends, else the survivor's throughput is reweighted.
+  bool survives_roulette(Path& path, int depth, float u) const;
 
   int max_depth_;
   int rr_start_depth_;

@@ -5,6 +5,7 @@
 #include "core/punctual_light.h"
 #include "core/spawn.h"
 #include "integrators/first_hit_aovs.h"
+#include "integrators/sheet_crossing.h"
 #include "materials/dielectric_bxdf.h"
 #include "materials/fresnel.h"
 #include "materials/material_eval.h"
@@ -82,7 +83,11 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       const float cos_i = dot(in.wi, ns);
       if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
       ++counters.shadow;
-      if (!scene.occluded(spawn_ray_toward(hit, in.wi, in.distance))) direct += f * in.irradiance * cos_i;
+      const Ray shadow = spawn_ray_toward(hit, in.wi, in.distance);
+      Rgb through(1.0f);  // a window pane lets a lamp outside light the room
+      if (scene.occluded(shadow))
+        through = scene.features().thin_sheets ? transmittance_through_sheets(scene, shadow, media.ior(), counters) : Rgb{};
+      direct += f * in.irradiance * cos_i * through;
     }
   }
 

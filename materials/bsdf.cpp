@@ -73,6 +73,11 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   if (non_delta != 1) only_lobe_ = -1;
 }
 
+Rgb Bsdf::straight_through() const {
+  if (!valid_ || !dielectric_ || !(pick_[kDielectric] > 0)) return {};
+  return dielectric_->straight_transmittance(wo_.z) * weight_[kDielectric];
+}
+
 bool Bsdf::lobe_is_delta(int lobe) const {
   switch (lobe) {
     case kMetal: return metal_->is_delta();

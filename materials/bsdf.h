@@ -48,6 +48,10 @@ class Bsdf {
   bool is_delta() const { return delta_only_; }
   // True when no lobe transmits: every direction it scatters to stays on wo's side.
   bool reflects_only() const { return weight_[kDielectric] == 0; }
+  // What passes straight through a smooth thin-walled sheet along -wo: the weight sample()'s
+  // straight transmitted directions carry, times how often it draws them. A shadow ray may cross
+  // the sheet with this factor instead of stopping at it. Zero for every other surface.
+  Rgb straight_through() const;
 
  private:
   enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };

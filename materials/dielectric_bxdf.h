@@ -37,6 +37,14 @@ class DielectricBxdf {
   float pdf(const Vec3& wo, const Vec3& wi) const;
   std::optional<BxdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const;
 
+  // A smooth thin sheet's delta transmission: what passes straight through along -wo (tint x
+  // (1 - R)), the expectation of sample()'s transmitted branch. Zero for rough sheets, volume
+  // boundaries and coats, whose transmission bends light or is absent.
+  Rgb straight_transmittance(float cos_o) const {
+    if (mode_ != Mode::ThinWalled || !is_delta()) return {};
+    return tint_ * (1.0f - split(cos_o).scalar);
+  }
+
   // Reflectance of the interface at cosine cos_o from the front (+) or back (-); for thin walls
   // it includes the light reflected back and forth inside the sheet.
   float reflectance(float cos_o) const;

@@ -2,10 +2,9 @@
 """Writes window-room.gltf: a closed white room (4 x 3 x 5 m) lit only through a glass window.
 
 The left wall has a 2 x 1.2 m opening filled by a pane of thin-walled glass (KHR_materials_transmission
-without a volume: light passes straight through, less what the pane reflects). Next-event
-estimation's shadow rays stop at the pane, so the sky reaches the room only through bounce
-directions that happen to cross it: the interior seen in archviz scenes, where prism's caster
-aiming (--caster-share) does the work of a portal. window-room.json adds a constant sky.
+without a volume: light passes straight through, less what the pane reflects). The interior seen in
+archviz scenes: shadow rays cross the pane, and prism's caster aiming (--caster-share) sends bounce
+directions through it like a portal. window-room.json adds a constant sky.
 Standard library only.
 """
 

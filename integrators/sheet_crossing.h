@@ -1,0 +1,24 @@
+// Thin sheets that light crosses straight on: shadow rays through window panes and bubbles.
+#pragma once
+
+#include "core/ray.h"
+#include "core/ray_counters.h"
+#include "core/scene.h"
+#include "core/vec3.h"
+
+namespace prism {
+
+// A smooth thin-walled sheet (glTF transmission without KHR_materials_volume) passes light along
+// a straight line, so a shadow ray may cross it and next-event estimation can light a room through
+// its window: the light a path would otherwise find only by drawing that very direction (never,
+// for a sun or a point light). The path tracer keeps its MIS consistent with this by not counting
+// a straight crossing as a scattering event (integrators/path_integrator.cpp).
+inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shadow rays and paths alike
+
+// What `ray`, a shadow ray found blocked, still lets through: it is traced hit by hit, each smooth
+// thin sheet multiplying by its straight transmission for that direction (Bsdf::straight_through),
+// and anything else, or more than kMaxSheetCrossings sheets, stopping it (black). medium_ior is
+// the index of the medium the ray travels in. Every segment traced counts as a shadow ray.
+Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters);
+
+}  // namespace prism

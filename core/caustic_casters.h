@@ -48,8 +48,9 @@ class CasterView {
 class CausticCasters {
  public:
   // A caster is a mesh primitive or analytic sphere whose material has a smooth (roughness factor
-  // at most kMaxRoughness) metal or transmission lobe: the surfaces that focus light into caustics
-  // next-event estimation cannot reach (its shadow rays stop at them). Positions are world space
+  // at most kMaxRoughness) metal lobe or bounds a refracting volume: the surfaces that focus light
+  // into caustics next-event estimation cannot reach (its shadow rays stop at them). Thin sheets
+  // are not: shadow rays cross them (integrators/sheet_crossing.h), and what they reflect is weak. Positions are world space
   // (the instance transforms applied); each caster is bounded by a sphere around its box.
   static constexpr float kMaxRoughness = 0.2f;
   // The largest, by bounding radius, when there are more: each costs every vertex a cone.

@@ -106,6 +106,7 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
   const float radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.diagonal());
   for (const PunctualLightDesc& l : desc.lights) power.push_back(punctual_power(l, radius));
   environment_ = EnvironmentLight(desc);
+  if (environment_.present()) portals_ = EnvironmentPortals(desc);
   if (environment_.present()) {
     // What a disc of the scene's size receives from the sky: pi r^2 x pi L.
     environment_index_ = static_cast<int>(power.size());
@@ -184,9 +185,18 @@ float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n) 
   return top_.pmf(0) * tree_.pmf(index, ref, ref_n);
 }
 
-float Emitters::environment_pdf(const Vec3& w) const {
+float Emitters::environment_direction_pdf(const EnvironmentPortals::View* view, const Vec3& ref, const Vec3& w,
+                                          int drawn_in) const {
+  if (!view || !(view->total > 0)) return environment_.pdf(w);
+  return (1 - kPortalShare) * environment_.pdf(w) + kPortalShare * portals_.pdf(*view, ref, w, drawn_in);
+}
+
+float Emitters::environment_pdf(const Vec3& ref, const Vec3& w) const {
   if (environment_index_ < 0) return 0;
-  return pick_probability(environment_index_, Vec3(), Vec3()) * environment_.pdf(w);
+  const float pick = pick_probability(environment_index_, Vec3(), Vec3());
+  if (portals_.empty()) return pick * environment_.pdf(w);
+  const EnvironmentPortals::View view = portals_.view(ref);
+  return pick * environment_direction_pdf(&view, ref, w);
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
@@ -210,7 +220,26 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
     s.infinite = true;
     s.emitter = static_cast<int>(i);
     float pdf_dir = 0;
-    s.wi = environment_.sample(u, pdf_dir);
+    if (portals_.empty()) {
+      s.wi = environment_.sample(u, pdf_dir);
+    } else {
+      // One draw chooses portal or map, then serves the one chosen (one-sample MIS: the density
+      // of either is the mixture's).
+      const EnvironmentPortals::View view = portals_.view(ref);
+      const float share = view.total > 0 ? kPortalShare : 0.0f;
+      int drawn_in = -1;
+      if (u.x < share) {
+        u.x = std::min(u.x / share, 0x1.fffffep-1f);
+        const std::optional<EnvironmentPortals::Sample> through = portals_.sample(view, ref, u);
+        if (!through) return {};
+        s.wi = through->w;
+        drawn_in = through->triangle;
+      } else {
+        u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
+        s.wi = environment_.sample(u, pdf_dir);
+      }
+      pdf_dir = environment_direction_pdf(&view, ref, s.wi, drawn_in);
+    }
     s.pdf = chosen->pmf * pdf_dir;
     s.distance = std::numeric_limits<float>::infinity();
     s.incident = environment_.radiance(s.wi);

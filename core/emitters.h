@@ -8,6 +8,7 @@
 
 #include "core/distribution_1d.h"
 #include "core/environment_light.h"
+#include "core/environment_portals.h"
 #include "core/light_tree.h"
 #include "core/scene_desc.h"
 #include "core/spherical_triangle.h"
@@ -61,8 +62,10 @@ class Emitters {
   // Emitter index of sphere `s`, or -1.
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
   const EnvironmentLight& environment() const { return environment_; }
-  // Density of sample() choosing direction w toward the environment, including the choice.
-  float environment_pdf(const Vec3& w) const;
+  // Density of sample() choosing direction w toward the environment from `ref`, including the
+  // choice (it depends on ref where portals lead to the sky).
+  float environment_pdf(const Vec3& ref, const Vec3& w) const;
+  const EnvironmentPortals& portals() const { return portals_; }
   // The probability of choosing light `index` (an emitter, then punctual lights, then the
   // environment) from `ref`.
   float pick_probability(int index, const Vec3& ref, const Vec3& ref_n) const;
@@ -120,6 +123,13 @@ class Emitters {
   std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
   std::vector<int> sphere_emitter_;
   EnvironmentLight environment_;
+  // Where a scene has thin glass sheets, the environment is sampled through them as well as by
+  // its own density: kPortalShare of its samples, wherever a portal is in view.
+  EnvironmentPortals portals_;
+  static constexpr float kPortalShare = 0.5f;
+  // The environment's own density and the portals' mixed, at direction w from ref.
+  float environment_direction_pdf(const EnvironmentPortals::View* view, const Vec3& ref, const Vec3& w,
+                                  int drawn_in = -1) const;
   // Punctual lights follow the area emitters in pick_ (light k is item size() + k); the
   // environment, when present, is the last item.
   int environment_index_ = -1;

@@ -142,7 +142,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
       const float weight =
-          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(w));
+          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(path.prev_p, w));
       path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;
@@ -337,15 +337,16 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       }
       if (goes_on) live[still++] = k;
     }
-    scene.occluded_packet(shadow_rays, s, blocked);
-    for (int j = 0; j < s; ++j) {
-      const ShadowQuery& q = shadows[shadow_lane[j]];
-      if (!blocked[j]) {
-        *q.target += q.contribution;
-      } else if (sheets) {  // blocked, perhaps only by thin sheets that let light through
+    if (sheets) {  // thin sheets in the scene: shadow rays may cross them
+      for (int j = 0; j < s; ++j) {
+        const ShadowQuery& q = shadows[shadow_lane[j]];
         const Rgb through = transmittance_through_sheets(scene, q.ray, q.medium_ior, counters);
         if (!is_black(through)) *q.target += q.contribution * through;
       }
+    } else {
+      scene.occluded_packet(shadow_rays, s, blocked);
+      for (int j = 0; j < s; ++j)
+        if (!blocked[j]) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution;
     }
     m = still;
   }

@@ -15,7 +15,7 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
   Rgb tr(1.0f);
   for (int crossed = 0; crossed <= kMaxSheetCrossings; ++crossed) {
     SurfaceHit hit;
-    ++counters.shadow;
+    if (crossed > 0) ++counters.shadow;
     if (!scene.intersect(ray, hit)) return tr;
     const MaterialDesc& m = desc.material(hit.material);
     if (!m.is_thin_sheet() || crossed == kMaxSheetCrossings) return {};

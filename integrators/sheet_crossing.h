@@ -15,10 +15,11 @@ namespace prism {
 // a straight crossing as a scattering event (integrators/path_integrator.cpp).
 inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shadow rays and paths alike
 
-// What `ray`, a shadow ray found blocked, still lets through: it is traced hit by hit, each smooth
-// thin sheet multiplying by its straight transmission for that direction (Bsdf::straight_through),
-// and anything else, or more than kMaxSheetCrossings sheets, stopping it (black). medium_ior is
-// the index of the medium the ray travels in. Every segment traced counts as a shadow ray.
+// What shadow ray `ray` lets through: it is traced hit by hit (closest hits, so scenes without thin
+// sheets are better served by an occlusion query), each smooth thin sheet multiplying by its
+// straight transmission for that direction (Bsdf::straight_through), and anything else, or more
+// than kMaxSheetCrossings sheets, stopping it (black). medium_ior is the index of the medium the
+// ray travels in. Each segment after the first counts as one more shadow ray.
 Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters);
 
 }  // namespace prism

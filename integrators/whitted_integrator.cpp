@@ -84,9 +84,9 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       if (cos_i <= 0 || dot(in.wi, ng) <= 0 || is_black(in.irradiance)) continue;
       ++counters.shadow;
       const Ray shadow = spawn_ray_toward(hit, in.wi, in.distance);
-      Rgb through(1.0f);  // a window pane lets a lamp outside light the room
-      if (scene.occluded(shadow))
-        through = scene.features().thin_sheets ? transmittance_through_sheets(scene, shadow, media.ior(), counters) : Rgb{};
+      // A window pane lets a lamp outside light the room.
+      const Rgb through = scene.features().thin_sheets ? transmittance_through_sheets(scene, shadow, media.ior(), counters)
+                                                       : Rgb(scene.occluded(shadow) ? 0.0f : 1.0f);
       direct += f * in.irradiance * cos_i * through;
     }
   }

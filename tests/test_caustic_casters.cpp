@@ -53,6 +53,8 @@ TEST(CausticCasters, AreSmoothMetalAndGlassOnlyPlacedInTheWorld) {
   EXPECT_FALSE(aims_at(casters, Vec3(0, 5, 0)));
   EXPECT_FALSE(aims_at(casters, Vec3(-5, 0, -1)));
   EXPECT_TRUE(CausticCasters::is_caster(desc.material(glass)));
+  // A thin pane passes light straight on, to shadow rays too: nothing to aim at.
+  EXPECT_FALSE(CausticCasters::is_caster(desc.material(test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, true))));
 }
 
 TEST(CasterView, TakesConesThatAreNarrowAndAboveTheSurface) {

@@ -3,8 +3,8 @@
 
 The left wall has a 2 x 1.2 m opening filled by a pane of thin-walled glass (KHR_materials_transmission
 without a volume: light passes straight through, less what the pane reflects). The interior seen in
-archviz scenes: shadow rays cross the pane, and prism's caster aiming (--caster-share) sends bounce
-directions through it like a portal. window-room.json adds a constant sky.
+archviz scenes: shadow rays cross the pane, and prism samples the sky through it as a portal.
+window-room.json adds a constant sky.
 Standard library only.
 """
 

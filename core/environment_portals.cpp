@@ -1,0 +1,94 @@
+#include "core/environment_portals.h"
+
+#include <cmath>
+
+#include "core/spherical_triangle.h"
+
+namespace prism {
+namespace {
+
+// Below this a triangle is left out of the view, in sampling and density alike: seen edge-on or
+// from very far, its spherical triangle is all rounding.
+constexpr float kMinSolidAngle = 1e-7f;
+
+// Whether the ray from o along w crosses triangle (p0, p1, p2) (Moller and Trumbore 1997).
+bool crosses(const Vec3& o, const Vec3& w, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const Vec3 pv = cross(w, e2);
+  const float det = dot(e1, pv);
+  if (det == 0) return false;
+  const float inv = 1.0f / det;
+  const Vec3 tv = o - p0;
+  const float b1 = dot(tv, pv) * inv;
+  if (b1 < 0 || b1 > 1) return false;
+  const Vec3 qv = cross(tv, e1);
+  const float b2 = dot(w, qv) * inv;
+  if (b2 < 0 || b1 + b2 > 1) return false;
+  return dot(e2, qv) * inv > 0;
+}
+
+}  // namespace
+
+EnvironmentPortals::EnvironmentPortals(const SceneDesc& desc) {
+  for (const InstanceDesc& inst : desc.instances) {
+    for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
+      if (!desc.material(prim.material).is_thin_sheet()) continue;
+      for (size_t t = 0; t < prim.triangle_count(); ++t) {
+        if (triangles_.size() == size_t(kMaxTriangles)) {
+          triangles_.clear();
+          return;
+        }
+        triangles_.push_back({inst.object_to_world.point(prim.positions[prim.indices[3 * t]]),
+                              inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]),
+                              inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]])});
+      }
+    }
+  }
+}
+
+EnvironmentPortals::View EnvironmentPortals::view(const Vec3& ref) const {
+  View v;
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    const Triangle& t = triangles_[i];
+    const float omega = SphericalTriangle(ref, t.p0, t.p1, t.p2).solid_angle();
+    if (omega >= kMinSolidAngle && std::isfinite(omega)) {
+      v.solid_angle[i] = omega;
+      v.total += omega;
+    }
+  }
+  return v;
+}
+
+std::optional<EnvironmentPortals::Sample> EnvironmentPortals::sample(const View& view, const Vec3& ref, Vec2 u) const {
+  if (!(view.total > 0)) return std::nullopt;
+  // The triangle by u.x, which rescaled within its share then serves the direction.
+  float target = u.x * view.total, start = 0;
+  size_t chosen = triangles_.size();
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    if (view.solid_angle[i] == 0) continue;
+    chosen = i;
+    if (target < start + view.solid_angle[i]) break;
+    start += view.solid_angle[i];
+  }
+  if (chosen == triangles_.size()) return std::nullopt;
+  u.x = std::fmin(std::fmax((target - start) / view.solid_angle[chosen], 0.0f), 0x1.fffffep-1f);
+  const Triangle& t = triangles_[chosen];
+  const std::optional<Barycentrics> b = SphericalTriangle(ref, t.p0, t.p1, t.p2).sample(u);
+  if (!b) return std::nullopt;
+  const Vec3 d = t.p0 * b->b0 + t.p1 * b->b1 + t.p2 * b->b2 - ref;
+  const float len = length(d);
+  if (!(len > 0)) return std::nullopt;
+  return Sample{d / len, int(chosen)};
+}
+
+float EnvironmentPortals::pdf(const View& view, const Vec3& ref, const Vec3& w, int drawn_in) const {
+  if (!(view.total > 0)) return 0;
+  int crossed = 0;
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    const Triangle& t = triangles_[i];
+    if (view.solid_angle[i] > 0 && (int(i) == drawn_in || crosses(ref, w, t.p0, t.p1, t.p2))) ++crossed;
+  }
+  return float(crossed) / view.total;
+}
+
+}  // namespace prism

@@ -18,6 +18,10 @@ class SphericalTriangle {
  public:
   SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
+  // Two corners seen further apart than this cosine (120 degrees), more so than the other pairs,
+  // are relabelled b and c for sampling.
+  static constexpr float kRelabelCos = -0.5f;
+
   // Solid angle in steradians, in [0, 2 pi]; either winding.
   float solid_angle() const { return solid_angle_; }
 
@@ -26,7 +30,7 @@ class SphericalTriangle {
   std::optional<Barycentrics> sample(Vec2 u) const;
 
  private:
-  Vec3 a_, b_, c_;  // unit directions from ref to p0, p1 and p2
+  Vec3 a_, b_, c_;  // unit directions from ref to p0, p1 and p2, perhaps rotated (kRelabelCos)
   Vec3 e1_, e2_;    // edges p1 - p0 and p2 - p0, divided by ref's largest distance to a corner
   Vec3 o_;          // ref - p0, divided likewise
   float det_ = 0;   // a . (b x c) of the unit directions

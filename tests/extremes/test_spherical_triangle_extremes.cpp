@@ -1,6 +1,7 @@
 // Sampling a triangle by solid angle at the extremes: slivers, grazing views and spherical
 // triangles from 1e-7 to 5.5 sr. Each sample is mapped back to the unit square exactly (in
-// long double, from the float corners) and must land where it came from.
+// long double, from the float corners) and must land where it came from, also for a triangle
+// that fills nearly a hemisphere.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +48,16 @@ struct Triangle {
 // sample at b itself says nothing of u.x: it comes back as -1.
 Vec2 exact_inverse(const Triangle& t, const Barycentrics& bary) {
   const R3 ref = exact(t.ref), p0 = exact(t.p0), p1 = exact(t.p1), p2 = exact(t.p2);
-  const R3 a = unit(p0 - ref), b = unit(p1 - ref), c = unit(p2 - ref);
+  R3 a = unit(p0 - ref), b = unit(p1 - ref), c = unit(p2 - ref);
+  // The sampler's labels: corners seen over 120 degrees apart are b and c (SphericalTriangle::kRelabelCos).
+  const Real ab = dot(a, b), bc = dot(b, c), ca = dot(c, a), limit = SphericalTriangle::kRelabelCos;
+  if (ab < limit && ab < bc && ab <= ca) {
+    const R3 first = a;
+    a = c, c = b, b = first;
+  } else if (ca < limit && ca < bc && ca < ab) {
+    const R3 first = a;
+    a = b, b = c, c = first;
+  }
   const R3 p{Real(bary.b0) * p0.x + Real(bary.b1) * p1.x + Real(bary.b2) * p2.x,
              Real(bary.b0) * p0.y + Real(bary.b1) * p1.y + Real(bary.b2) * p2.y,
              Real(bary.b0) * p0.z + Real(bary.b1) * p1.z + Real(bary.b2) * p2.z};
@@ -69,6 +79,12 @@ std::vector<Triangle> shapes() {
       {"sliver", Vec3(0.5f, 0.01f, 0.03f), p0, p1, Vec3(0.5f, 0.02f, 0)},
       {"edge-on corner", Vec3(-20, -0.01f, 0.5f), p0, p1, Vec3(0, 1, 0)},
   };
+  // Half of a square 10000 wide seen from 2 below its centre: its diagonal's ends are seen nearly
+  // opposite, in each of the three places of the corner order.
+  const Vec3 q0(-5000, 2, -5000), q1(5000, 2, 5000), q2(-5000, 2, 5000);
+  out.push_back({"half a huge square, opposite corners first and second", Vec3(0.0f), q0, q1, q2});
+  out.push_back({"half a huge square, opposite corners second and third", Vec3(0.0f), q2, q0, q1});
+  out.push_back({"half a huge square, opposite corners third and first", Vec3(0.0f), q1, q2, q0});
   // Grazing: off the triangle's side by 3 to 30 times its size, 0.5 to 0.005 above its plane.
   for (const float d : {3.0f, 10.0f, 30.0f}) {
     for (const float h : {0.5f, 0.05f, 0.005f}) {

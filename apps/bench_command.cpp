@@ -35,7 +35,8 @@ std::vector<std::string> canonical_scenes() {
   const std::filesystem::path root = PRISM_SOURCE_DIR;
   std::vector<std::string> scenes = {(root / "scenes/cornell-box/cornell-box.gltf").string(),
                                      (root / "scenes/cornell-glass/cornell-glass.json").string(),
-                                     (root / "scenes/many-lights/many-lights.gltf").string()};
+                                     (root / "scenes/many-lights/many-lights.gltf").string(),
+                                     (root / "scenes/window-room/window-room.json").string()};
   const std::filesystem::path heavy = root / "scenes/heavy-mesh/heavy-mesh.glb";
   if (std::filesystem::exists(heavy)) scenes.push_back(heavy.string());
   else
@@ -261,8 +262,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
       "bench", "Render the canonical scenes and print, per scene: triangles, BVH build and render seconds, Mpaths/s, "
                "Mrays/s (all, camera, extension, shadow), peak memory and, with --references, relative MSE and efficiency");
   cmd->add_option("SCENES", o.scenes,
-                  "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass, scenes/many-lights and, once generated, "
-                  "scenes/heavy-mesh)");
+                  "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass, scenes/many-lights, "
+                  "scenes/window-room and, once generated, scenes/heavy-mesh)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (default 16)")->check(CLI::PositiveNumber);
   cmd->add_option("--res", o.resolution, "Image size WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--max-depth", o.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);

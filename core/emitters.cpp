@@ -106,8 +106,8 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
   const float radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.diagonal());
   for (const PunctualLightDesc& l : desc.lights) power.push_back(punctual_power(l, radius));
   environment_ = EnvironmentLight(desc);
-  if (environment_.present()) portals_ = EnvironmentPortals(desc);
   if (environment_.present()) {
+    portals_ = EnvironmentPortals(desc);  // windows the sky comes through, if any
     // What a disc of the scene's size receives from the sky: pi r^2 x pi L.
     environment_index_ = static_cast<int>(power.size());
     power.push_back(double(kPi) * kPi * double(radius) * radius * environment_.mean_luminance());

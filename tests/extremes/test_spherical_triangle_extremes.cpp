@@ -81,10 +81,10 @@ std::vector<Triangle> shapes() {
   };
   // Half of a square 10000 wide seen from 2 below its centre: its diagonal's ends are seen nearly
   // opposite, in each of the three places of the corner order.
-  const Vec3 q0(-5000, 2, -5000), q1(5000, 2, 5000), q2(-5000, 2, 5000);
-  out.push_back({"half a huge square, opposite corners first and second", Vec3(0.0f), q0, q1, q2});
-  out.push_back({"half a huge square, opposite corners second and third", Vec3(0.0f), q2, q0, q1});
-  out.push_back({"half a huge square, opposite corners third and first", Vec3(0.0f), q1, q2, q0});
+  const Vec3 h0(-5000, 2, -5000), h1(5000, 2, 5000), h2(-5000, 2, 5000);
+  out.push_back({"half a huge square, opposite corners first and second", Vec3(0.0f), h0, h1, h2});
+  out.push_back({"half a huge square, opposite corners second and third", Vec3(0.0f), h2, h0, h1});
+  out.push_back({"half a huge square, opposite corners third and first", Vec3(0.0f), h1, h2, h0});
   // Grazing: off the triangle's side by 3 to 30 times its size, 0.5 to 0.005 above its plane.
   for (const float d : {3.0f, 10.0f, 30.0f}) {
     for (const float h : {0.5f, 0.05f, 0.005f}) {

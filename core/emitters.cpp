@@ -74,9 +74,9 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
         e.primitive = static_cast<int>(p);
         e.index = static_cast<uint32_t>(t);
         e.material = prim.material;
-        e.p0 = inst.object_to_world.point(prim.positions[prim.indices[3 * t]]);
-        e.p1 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]);
-        e.p2 = inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]]);
+        e.p0 = world_corner(inst, prim, t, 0);
+        e.p1 = world_corner(inst, prim, t, 1);
+        e.p2 = world_corner(inst, prim, t, 2);
         if (flip < 0) std::swap(e.p1, e.p2);  // keep the front face counter-clockwise in world space
         const FaceNormal face = face_normal(e.p0, e.p1, e.p2);
         e.area = face.area;

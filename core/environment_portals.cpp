@@ -38,9 +38,8 @@ EnvironmentPortals::EnvironmentPortals(const SceneDesc& desc) {
           triangles_.clear();
           return;
         }
-        triangles_.push_back({inst.object_to_world.point(prim.positions[prim.indices[3 * t]]),
-                              inst.object_to_world.point(prim.positions[prim.indices[3 * t + 1]]),
-                              inst.object_to_world.point(prim.positions[prim.indices[3 * t + 2]])});
+        triangles_.push_back(
+            {world_corner(inst, prim, t, 0), world_corner(inst, prim, t, 1), world_corner(inst, prim, t, 2)});
       }
     }
   }

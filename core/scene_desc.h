@@ -108,6 +108,11 @@ struct InstanceDesc {
   Transform object_to_world;
 };
 
+// Corner k (0, 1 or 2) of triangle t of `prim`, in the world where `inst` places it.
+inline Vec3 world_corner(const InstanceDesc& inst, const PrimitiveDesc& prim, size_t t, int k) {
+  return inst.object_to_world.point(prim.positions[prim.indices[3 * t + size_t(k)]]);
+}
+
 // An analytic sphere in world space.
 struct SphereDesc {
   std::string name;

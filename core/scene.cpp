@@ -192,7 +192,8 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
         RTCGeometry geom = triangle_geometry(device, prims[p]);
         attach_alpha_filter(geom, inst.mesh, static_cast<int>(p));
         rtcCommitGeometry(geom);
-        attach_top(geom, {static_cast<int>(i), static_cast<int>(p), face_normals(prims[p])});
+        attach_top(geom, {static_cast<int>(i), static_cast<int>(p), face_normals(prims[p]),
+                          desc_.material(prims[p].material).is_thin_sheet()});
       }
       continue;
     }
@@ -217,6 +218,8 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
     rtcCommitGeometry(geom);
     attach_top(geom, {static_cast<int>(i), -1, {}});
   }
+  for (const SphereDesc& sphere : desc_.spheres)
+    if (desc_.material(sphere.material).is_thin_sheet()) sees_every_sheet_ = false;
   if (!desc_.spheres.empty()) {
     sphere_geom_id_ = static_cast<unsigned>(top_geometries_.size());
     sphere_geometry_.spheres = &desc_.spheres;
@@ -354,6 +357,59 @@ void Scene::occluded8(const Ray* rays, int n, bool* occluded) const {
   fill_packet(r, valid, rays, n);
   rtcOccluded8(valid, top_, &c.context, &r);
   for (int k = 0; k < n; ++k) occluded[k] = r.tfar[k] < 0;
+}
+
+namespace {
+
+// occluded_past_sheets' context: the leaving triangles, and where the filter notes the sheets it
+// lets rays through.
+struct SheetContext {
+  LeavingContext leaving;
+  const Scene* scene;
+  bool* crossed_sheet;  // by ray id
+};
+
+}  // namespace
+
+bool Scene::is_sheet_hit(unsigned geom, unsigned inst) const {
+  if (inst == RTC_INVALID_GEOMETRY_ID) return geom < top_geometries_.size() && top_geometries_[geom].sheet;
+  // An instanced mesh: geom is the primitive within it.
+  const InstanceDesc& instance = desc_.instances[size_t(top_geometries_[inst].instance)];
+  return desc_.material(desc_.meshes[size_t(instance.mesh)].primitives[geom].material).is_thin_sheet();
+}
+
+void Scene::sheet_filter(const RTCFilterFunctionNArguments* args) {
+  skip_left_triangle(args);
+  const auto* c = reinterpret_cast<const SheetContext*>(args->context);
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i] || !c->scene->is_sheet_hit(RTCHitN_geomID(args->hit, N, i), RTCHitN_instID(args->hit, N, i, 0)))
+      continue;
+    c->crossed_sheet[RTCRayN_id(args->ray, N, i)] = true;
+    args->valid[i] = 0;  // not a blocker: look on past it
+  }
+}
+
+void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, bool* crossed_sheet) const {
+  for (int first = 0; first < n; first += kPacketSize) {
+    const int m = std::min(n - first, kPacketSize);
+    SheetContext c{leaving_context(rays + first, m, false), this, crossed_sheet + first};
+    c.leaving.context.filter = sheet_filter;
+    for (int k = 0; k < m; ++k) crossed_sheet[first + k] = false;
+    if (m == 1) {  // a one-lane packet costs more than the one-ray query
+      RTCRay r = to_embree(rays[first]).ray;
+      rtcOccluded1(top_, &c.leaving.context, &r);
+      blocked[first] = r.tfar < 0;
+    } else {
+      alignas(32) RTCRay8 r;
+      alignas(32) int valid[kPacketSize];
+      fill_packet(r, valid, rays + first, m);
+      rtcOccluded8(valid, top_, &c.leaving.context, &r);
+      for (int k = 0; k < m; ++k) blocked[first + k] = r.tfar[k] < 0;
+    }
+    for (int k = 0; k < m; ++k)
+      if (blocked[first + k]) crossed_sheet[first + k] = false;
+  }
 }
 
 bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {

@@ -51,6 +51,14 @@ class Scene {
   static constexpr int kPacketSize = kEmbreePacketSize;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent = false) const;
   void occluded_packet(const Ray* rays, int n, bool* occluded) const;
+  // Occlusion that looks past thin sheets (MaterialDesc::is_thin_sheet): blocked[k] when something
+  // else blocks rays[k]; crossed_sheet[k] when a sheet lies within its range (set only for rays not
+  // blocked). One packet query answers most shadow rays of a scene with glass panes; only those
+  // that cross a sheet need its transmittance. Requires sees_every_sheet().
+  void occluded_past_sheets(const Ray* rays, int n, bool* blocked, bool* crossed_sheet) const;
+  // Whether occluded_past_sheets can tell every sheet apart: false when a sphere is one (the
+  // spheres' own intersection code runs no filters).
+  bool sees_every_sheet() const { return sees_every_sheet_; }
 
   const SceneDesc& desc() const { return desc_; }
   // The world position of the coordinates' origin: world = scene coordinates + origin().
@@ -69,6 +77,7 @@ class Scene {
     int primitive = -1;  // baked meshes: the primitive; instances: -1 (Embree's geomID says)
     // Baked meshes: each triangle's face_normal, computed once (double precision is dear per hit).
     std::vector<Vec3> face_normals;
+    bool sheet = false;  // baked meshes: the primitive's material is a thin sheet
   };
 
   // What an alpha filter needs to know about the primitive it guards.
@@ -85,6 +94,10 @@ class Scene {
   void bake_single_use_meshes();
   void attach_alpha_filter(RTCGeometry geom, int mesh, int primitive);
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
+  // occluded_past_sheets' filter: skips the triangle a ray leaves and passes through sheets.
+  static void sheet_filter(const RTCFilterFunctionNArguments* args);
+  // Whether Embree's hit (geomID, instID) is on a thin sheet's triangle.
+  bool is_sheet_hit(unsigned geom, unsigned inst) const;
   // Fills `hit` from Embree's answer for `ray`; false when the ray hit nothing.
   bool resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
   // Embree's closest hit for one ray, with or without the filter that skips the triangle it leaves.
@@ -104,6 +117,7 @@ class Scene {
   std::vector<RTCScene> mesh_scenes_;  // per mesh; null for meshes baked into the top level
   std::vector<TopGeometry> top_geometries_;
   unsigned sphere_geom_id_ = RTC_INVALID_GEOMETRY_ID;
+  bool sees_every_sheet_ = true;
   SphereGeometry sphere_geometry_;
   Emitters emitters_;
   CausticCasters casters_;

@@ -47,6 +47,7 @@ struct PathIntegrator::ShadowQuery {
   bool cast = false;      // false: there is no shadow ray to trace
   Rgb* target = nullptr;
   float medium_ior = 1;  // of the medium the ray travels in, for the sheets it may cross
+  bool expects_sheet = false;  // drawn through a window: walk its hits at once
 };
 
 // How a vertex draws its next direction: from the BSDF, or with probability `share` (at most
@@ -109,6 +110,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();
   q.medium_ior = media.ior();
+  q.expects_sheet = ls.through_portal;
   if ((dot(wi, hit.ng) > 0) != from_front && material.has_volume()) {
     MediumStack beyond = media;
     beyond.cross(material, hit.material, from_front);
@@ -319,9 +321,11 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   Ray rays[kLanes], shadow_rays[kLanes];
   SurfaceHit hits[kLanes];
   ShadowQuery shadows[kLanes];
-  bool found[kLanes], blocked[kLanes];
+  bool found[kLanes];
+  float shadow_iors[kLanes];
+  bool shadow_expects_sheet[kLanes];
+  Rgb through[kLanes];
   int shadow_lane[kLanes];
-  const bool sheets = scene.features().thin_sheets;
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
@@ -333,21 +337,15 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       const bool goes_on = advance(scene, paths[k], found[i] ? &hits[i] : nullptr, shadows[i], counters);
       if (shadows[i].cast) {
         shadow_rays[s] = shadows[i].ray;
+        shadow_iors[s] = shadows[i].medium_ior;
+        shadow_expects_sheet[s] = shadows[i].expects_sheet;
         shadow_lane[s++] = i;
       }
       if (goes_on) live[still++] = k;
     }
-    if (sheets) {  // thin sheets in the scene: shadow rays may cross them
-      for (int j = 0; j < s; ++j) {
-        const ShadowQuery& q = shadows[shadow_lane[j]];
-        const Rgb through = transmittance_through_sheets(scene, q.ray, q.medium_ior, counters);
-        if (!is_black(through)) *q.target += q.contribution * through;
-      }
-    } else {
-      scene.occluded_packet(shadow_rays, s, blocked);
-      for (int j = 0; j < s; ++j)
-        if (!blocked[j]) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution;
-    }
+    shadow_transmittance(scene, shadow_rays, shadow_iors, shadow_expects_sheet, s, through, counters);
+    for (int j = 0; j < s; ++j)
+      if (!is_black(through[j])) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution * through[j];
     m = still;
   }
   for (int k = 0; k < n; ++k) out[k] = finish(paths[k]);

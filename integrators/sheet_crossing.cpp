@@ -1,5 +1,6 @@
 #include "integrators/sheet_crossing.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/spawn.h"
@@ -30,6 +31,47 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
     ray = Ray{origin, end - origin, 0.0f, 1.0f, hit.triangle};
   }
   return {};
+}
+
+void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, const bool* expects_sheet,
+                          int n, Rgb* through, RayCounters& counters) {
+  constexpr int kPacket = Scene::kPacketSize;
+  bool blocked[kPacket], crossed[kPacket];
+  if (!scene.features().thin_sheets) {
+    for (int first = 0; first < n; first += kPacket) {
+      const int m = std::min(n - first, kPacket);
+      scene.occluded_packet(rays + first, m, blocked);
+      for (int k = 0; k < m; ++k) through[first + k] = Rgb(blocked[k] ? 0.0f : 1.0f);
+    }
+    return;
+  }
+  // The occlusion query cannot see past a sheet sphere: then every ray is walked.
+  const bool query = scene.sees_every_sheet();
+  Ray asked[kPacket];
+  int asked_index[kPacket];
+  for (int first = 0; first < n; first += kPacket) {
+    const int m = std::min(n - first, kPacket);
+    int q = 0;
+    for (int k = first; k < first + m; ++k) {
+      if (query && !(expects_sheet && expects_sheet[k])) {
+        asked[q] = rays[k];
+        asked_index[q++] = k;
+      } else {
+        through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters);
+      }
+    }
+    if (q == 0) continue;
+    scene.occluded_past_sheets(asked, q, blocked, crossed);
+    for (int j = 0; j < q; ++j) {
+      const int k = asked_index[j];
+      if (!crossed[j]) {
+        through[k] = Rgb(blocked[j] ? 0.0f : 1.0f);
+        continue;
+      }
+      ++counters.shadow;
+      through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters);
+    }
+  }
 }
 
 }  // namespace prism

@@ -22,4 +22,12 @@ inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shad
 // ray travels in. Each segment after the first counts as one more shadow ray.
 Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters);
 
+// What each of n shadow rays lets through, in any scene: 1 or 0 by an occlusion query, traced as
+// packets, where no thin sheet is in the way; the rays that cross one (Scene::occluded_past_sheets
+// tells which) are then walked with transmittance_through_sheets, counted as one more shadow ray.
+// medium_iors[k] is the index of the medium rays[k] travels in. Rays with expects_sheet[k] (null:
+// none) are walked without the query first: a ray toward the sky through a window crosses it.
+void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, const bool* expects_sheet,
+                          int n, Rgb* through, RayCounters& counters);
+
 }  // namespace prism

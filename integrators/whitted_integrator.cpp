@@ -85,8 +85,9 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       ++counters.shadow;
       const Ray shadow = spawn_ray_toward(hit, in.wi, in.distance);
       // A window pane lets a lamp outside light the room.
-      const Rgb through = scene.features().thin_sheets ? transmittance_through_sheets(scene, shadow, media.ior(), counters)
-                                                       : Rgb(scene.occluded(shadow) ? 0.0f : 1.0f);
+      const float ior = media.ior();
+      Rgb through;
+      shadow_transmittance(scene, &shadow, &ior, nullptr, 1, &through, counters);
       direct += f * in.irradiance * cos_i * through;
     }
   }

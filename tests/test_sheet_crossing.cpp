@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/constants.h"
 #include "core/sampler.h"
 #include "furnace_scene.h"
+#include "integrators/sheet_crossing.h"
 #include "integrators/whitted_integrator.h"
 #include "materials/bsdf.h"
 #include "materials/fresnel.h"
@@ -148,6 +150,91 @@ TEST(SheetCrossing, SkyThroughAPaneKeepsEveryMean) {
     test::expect_furnace(sky, floor_camera(), kAlbedo, depth, 100, expected);
     test::expect_furnace(lamp, floor_camera(), kAlbedo, depth, 100, expected);
   }
+}
+
+TEST(SheetCrossing, OcclusionLooksPastSheetsAndNothingElse) {
+  // A floor, an opaque box and a roof beside panes: one baked into the world, one mesh placed twice
+  // (instanced), one on a tinted pane. Shadow segments and rays to the sky between them: where
+  // the query that looks past sheets says blocked, walking the hits one by one finds no light;
+  // where it says clear and crossed no sheet, all of it; where it crossed one, the closest hit
+  // is a sheet and the walk decides.
+  SceneDesc desc;
+  const int white = test::add_material(desc, Rgb(0.5f));
+  const int pane = test::add_glass(desc, kIor, Rgb(1.0f), 1.0f, /*thin_walled=*/true);
+  test::add_quad(desc, Vec3(-4, 0, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), white);
+  test::add_box(desc, Vec3(-0.5f, 0, -0.5f), Vec3(0.5f, 1, 0.5f), white);
+  test::add_quad(desc, Vec3(-4, 2.5f, -4), Vec3(2, 0, 0), Vec3(0, 0, 8), white);  // a roof over one side
+  test::add_quad(desc, Vec3(-2, 2, -2), Vec3(0, 0, 2), Vec3(2, 0, 0), pane);
+  const int twice = test::add_quad(desc, Vec3(0, 0, 0), Vec3(0, 0, 2), Vec3(2, 0, 0), pane,
+                                   Transform::translate(Vec3(0, 2, -2)));
+  desc.instances.push_back({"second placement", twice, Transform::translate(Vec3(0, 3, 0))});
+  const Scene scene(std::move(desc));
+  ASSERT_TRUE(scene.sees_every_sheet());
+
+  IndependentSampler sampler(7);
+  sampler.start_pixel_sample(0, 0, 0);
+  constexpr int kRays = 4000;
+  std::vector<Ray> rays;
+  for (int i = 0; i < kRays; ++i) {
+    const Vec3 o(8 * sampler.next_1d() - 4, 0.01f + 0.98f * sampler.next_1d(), 8 * sampler.next_1d() - 4);
+    if (i % 2 == 0) {  // toward a point above the panes: a shadow segment
+      const Vec3 target(8 * sampler.next_1d() - 4, 4, 8 * sampler.next_1d() - 4);
+      rays.emplace_back(o, target - o, 0.0f, 1.0f);
+    } else {  // toward the sky
+      const Vec3 w = normalize(Vec3(sampler.next_1d() - 0.5f, sampler.next_1d(), sampler.next_1d() - 0.5f));
+      rays.emplace_back(o, w);
+    }
+  }
+  std::vector<char> blocked(kRays), crossed(kRays);
+  scene.occluded_past_sheets(rays.data(), kRays, reinterpret_cast<bool*>(blocked.data()),
+                             reinterpret_cast<bool*>(crossed.data()));
+  // What the integrators ask: every third ray hinted to cross a sheet (walked without the query).
+  std::vector<float> iors(kRays, 1.0f);
+  std::vector<char> hinted(kRays);
+  for (int i = 0; i < kRays; i += 3) hinted[i] = true;
+  std::vector<Rgb> through(kRays);
+  RayCounters counters;
+  shadow_transmittance(scene, rays.data(), iors.data(), reinterpret_cast<const bool*>(hinted.data()), kRays,
+                       through.data(), counters);
+  int counts[3] = {0, 0, 0};  // blocked, clear, crossed
+  for (int i = 0; i < kRays; ++i) {
+    const Rgb walked = transmittance_through_sheets(scene, rays[i], 1.0f, counters);
+    EXPECT_TRUE(through[i].x == walked.x && through[i].y == walked.y && through[i].z == walked.z) << "ray " << i;
+    SurfaceHit hit;
+    const bool found = scene.intersect(rays[i], hit);
+    if (blocked[i]) {
+      ++counts[0];
+      EXPECT_TRUE(is_black(walked)) << "ray " << i;
+      EXPECT_FALSE(crossed[i]) << "ray " << i;
+    } else if (!crossed[i]) {
+      ++counts[1];
+      EXPECT_FALSE(found) << "ray " << i;
+      EXPECT_EQ(walked.y, 1.0f) << "ray " << i;
+    } else {
+      ++counts[2];
+      ASSERT_TRUE(found) << "ray " << i;
+      EXPECT_TRUE(scene.desc().material(hit.material).is_thin_sheet()) << "ray " << i;
+      EXPECT_GT(walked.y, 0.0f) << "ray " << i;  // the panes are clear and nothing opaque is behind
+    }
+  }
+  for (const int c : counts)  // every case met often
+    EXPECT_GT(c, kRays / 20) << "blocked " << counts[0] << ", clear " << counts[1] << ", crossed " << counts[2];
+  // Rays that cross the instanced pane twice placed (x > 0, z in (-2, 0)) and the baked one.
+  for (const Vec3 o : {Vec3(1, 1.5f, -1), Vec3(-1, 1.5f, -1)}) {
+    const Ray up(o, Vec3(0, 1, 0));
+    bool b = true, c = false;
+    scene.occluded_past_sheets(&up, 1, &b, &c);
+    EXPECT_FALSE(b);
+    EXPECT_TRUE(c);
+  }
+}
+
+TEST(SheetCrossing, ASheetSphereIsNotSeenPastByOcclusion) {
+  // The spheres' intersection code runs no filters, so occlusion cannot look past a sheet sphere:
+  // the scene says so and the integrators walk every shadow ray instead.
+  SceneDesc desc;
+  test::add_sphere(desc, Vec3(0, 0, 0), 1, test::add_glass(desc, kIor, Rgb(1.0f), 1.0f, /*thin_walled=*/true));
+  EXPECT_FALSE(Scene(std::move(desc)).sees_every_sheet());
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #include "core/environment_portals.h"
 
 #include <cmath>
+#include <new>
 
-#include "core/spherical_triangle.h"
 
 namespace prism {
 namespace {
@@ -49,7 +49,9 @@ EnvironmentPortals::View EnvironmentPortals::view(const Vec3& ref) const {
   View v;
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const Triangle& t = triangles_[i];
-    const float omega = SphericalTriangle(ref, t.p0, t.p1, t.p2).solid_angle();
+    const SphericalTriangle* seen =
+        new (v.triangles + i * sizeof(SphericalTriangle)) SphericalTriangle(ref, t.p0, t.p1, t.p2);
+    const float omega = seen->solid_angle();
     if (omega >= kMinSolidAngle && std::isfinite(omega)) {
       v.solid_angle[i] = omega;
       v.total += omega;
@@ -72,7 +74,7 @@ std::optional<EnvironmentPortals::Sample> EnvironmentPortals::sample(const View&
   if (chosen == triangles_.size()) return std::nullopt;
   u.x = std::fmin(std::fmax((target - start) / view.solid_angle[chosen], 0.0f), 0x1.fffffep-1f);
   const Triangle& t = triangles_[chosen];
-  const std::optional<Barycentrics> b = SphericalTriangle(ref, t.p0, t.p1, t.p2).sample(u);
+  const std::optional<Barycentrics> b = view.triangle(chosen).sample(u);
   if (!b) return std::nullopt;
   const Vec3 d = t.p0 * b->b0 + t.p1 * b->b1 + t.p2 * b->b2 - ref;
   const float len = length(d);

@@ -3,10 +3,13 @@
 // portals, found here without the user marking them).
 #pragma once
 
+#include <new>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "core/scene_desc.h"
+#include "core/spherical_triangle.h"
 #include "core/vec3.h"
 
 namespace prism {
@@ -33,6 +36,12 @@ class EnvironmentPortals {
   struct View {
     float solid_angle[kMaxTriangles] = {};
     float total = 0;  // 0: no portal subtends a usable solid angle from here
+    // The spherical triangle of each portal triangle, kept so that sampling one does not build it
+    // again (raw storage: zeroing all 32 would cost more; they need no destructor).
+    const SphericalTriangle& triangle(size_t i) const {
+      return *std::launder(reinterpret_cast<const SphericalTriangle*>(triangles) + i);
+    }
+    alignas(SphericalTriangle) unsigned char triangles[kMaxTriangles * sizeof(SphericalTriangle)];
   };
   View view(const Vec3& ref) const;
   // A direction from ref drawn with density pdf(), and the triangle it was drawn in; nullopt when
@@ -41,6 +50,7 @@ class EnvironmentPortals {
     Vec3 w;
     int triangle = -1;
   };
+  static_assert(std::is_trivially_copyable_v<SphericalTriangle> && std::is_trivially_destructible_v<SphericalTriangle>);
   std::optional<Sample> sample(const View& view, const Vec3& ref, Vec2 u) const;
   // Density (per steradian) of sample() drawing unit direction w from ref. drawn_in, the triangle
   // a sample came from, always counts: rounding can put its direction a hair outside its edges.

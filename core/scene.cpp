@@ -313,9 +313,9 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
 
 bool Scene::occluded(const Ray& ray) const {
   LeavingContext c = leaving_context(&ray, 1, false);
-  RTCRay r = to_embree(ray).ray;
-  rtcOccluded1(top_, &c.context, &r);
-  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+  bool blocked = false;
+  occluded8(&ray, 1, &blocked, &c.context);
+  return blocked;
 }
 
 void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const {
@@ -347,15 +347,21 @@ void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bo
 }
 
 void Scene::occluded8(const Ray* rays, int n, bool* occluded) const {
-  if (n == 1) {
-    occluded[0] = this->occluded(rays[0]);
+  LeavingContext c = leaving_context(rays, n, false);
+  occluded8(rays, n, occluded, &c.context);
+}
+
+void Scene::occluded8(const Ray* rays, int n, bool* occluded, RTCIntersectContext* context) const {
+  if (n == 1) {  // a one-lane packet costs more than the one-ray query
+    RTCRay r = to_embree(rays[0]).ray;
+    rtcOccluded1(top_, context, &r);
+    occluded[0] = r.tfar < 0;  // Embree sets tfar to -inf on a hit
     return;
   }
-  LeavingContext c = leaving_context(rays, n, false);
   alignas(32) RTCRay8 r;
   alignas(32) int valid[kPacketSize];
   fill_packet(r, valid, rays, n);
-  rtcOccluded8(valid, top_, &c.context, &r);
+  rtcOccluded8(valid, top_, context, &r);
   for (int k = 0; k < n; ++k) occluded[k] = r.tfar[k] < 0;
 }
 
@@ -396,17 +402,7 @@ void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, bool* cr
     SheetContext c{leaving_context(rays + first, m, false), this, crossed_sheet + first};
     c.leaving.context.filter = sheet_filter;
     for (int k = 0; k < m; ++k) crossed_sheet[first + k] = false;
-    if (m == 1) {  // a one-lane packet costs more than the one-ray query
-      RTCRay r = to_embree(rays[first]).ray;
-      rtcOccluded1(top_, &c.leaving.context, &r);
-      blocked[first] = r.tfar < 0;
-    } else {
-      alignas(32) RTCRay8 r;
-      alignas(32) int valid[kPacketSize];
-      fill_packet(r, valid, rays + first, m);
-      rtcOccluded8(valid, top_, &c.leaving.context, &r);
-      for (int k = 0; k < m; ++k) blocked[first + k] = r.tfar[k] < 0;
-    }
+    occluded8(rays + first, m, blocked + first, &c.leaving.context);
     for (int k = 0; k < m; ++k)
       if (blocked[first + k]) crossed_sheet[first + k] = false;
   }

@@ -105,6 +105,8 @@ class Scene {
   // One packet of n <= kPacketSize rays.
   void intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent) const;
   void occluded8(const Ray* rays, int n, bool* occluded) const;
+  // The same under a given intersection context (its filter decides what blocks).
+  void occluded8(const Ray* rays, int n, bool* occluded, RTCIntersectContext* context) const;
   // face_normals: the primitive's precomputed unit normals (world space), or null to compute them.
   void reconstruct_triangle_hit(int instance, int primitive, const Vec3* face_normals, const RTCRayHit& rh,
                                 SurfaceHit& hit) const;

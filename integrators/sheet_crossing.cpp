@@ -8,7 +8,8 @@
 
 namespace prism {
 
-Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters) {
+Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
+                                 bool clear_but_sheets) {
   const SceneDesc& desc = scene.desc();
   const bool unbounded = std::isinf(ray.t_max);
   const Vec3 end = unbounded ? Vec3(0.0f) : ray.origin + ray.dir * ray.t_max;  // where the segment stops
@@ -19,9 +20,11 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
     if (crossed > 0) ++counters.shadow;
     if (!scene.intersect(ray, hit)) return tr;
     const MaterialDesc& m = desc.material(hit.material);
-    if (!m.is_thin_sheet() || crossed == kMaxSheetCrossings) return {};
-    tr *= make_bsdf(desc, hit, -dir, m.ior / medium_ior).straight_through();
-    if (is_black(tr)) return {};
+    if (crossed == kMaxSheetCrossings || !(m.is_thin_sheet() || clear_but_sheets)) return {};
+    if (m.is_thin_sheet()) {
+      tr *= make_bsdf(desc, hit, -dir, m.ior / medium_ior).straight_through();
+      if (is_black(tr)) return {};
+    }
     if (unbounded) {
       ray = spawn_ray(hit, dir);
       continue;
@@ -69,7 +72,7 @@ void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medi
         continue;
       }
       ++counters.shadow;
-      through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters);
+      through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters, /*clear_but_sheets=*/true);
     }
   }
 }

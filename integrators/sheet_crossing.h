@@ -20,7 +20,12 @@ inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shad
 // straight transmission for that direction (Bsdf::straight_through), and anything else, or more
 // than kMaxSheetCrossings sheets, stopping it (black). medium_ior is the index of the medium the
 // ray travels in. Each segment after the first counts as one more shadow ray.
-Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters);
+// With `clear_but_sheets` the ray is already known to be blocked by nothing but sheets
+// (Scene::occluded_past_sheets said so): anything else it meets is stepped over, not taken as a
+// blocker. That can only be a BLEND surface the query let the ray past; a segment spawned beyond
+// a sheet would decide it again by a hash of its own, and let (1 - alpha)^2 through, not 1 - alpha.
+Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
+                                 bool clear_but_sheets = false);
 
 // What each of n shadow rays lets through, in any scene: 1 or 0 by an occlusion query, traced as
 // packets, where no thin sheet is in the way; the rays that cross one (Scene::occluded_past_sheets

@@ -6,12 +6,14 @@
 #include <vector>
 
 #include "core/constants.h"
+#include "core/pcg32.h"
 #include "core/sampler.h"
 #include "furnace_scene.h"
 #include "integrators/sheet_crossing.h"
 #include "integrators/whitted_integrator.h"
 #include "materials/bsdf.h"
 #include "materials/fresnel.h"
+#include "materials/material_eval.h"
 #include "scene_builders.h"
 
 namespace prism {
@@ -227,6 +229,43 @@ TEST(SheetCrossing, OcclusionLooksPastSheetsAndNothingElse) {
     EXPECT_FALSE(b);
     EXPECT_TRUE(c);
   }
+}
+
+TEST(SheetCrossing, ABlendSurfaceBehindAPaneIsDecidedOnce) {
+  // Shadow segments up through a clear pane (y = 1), then a surface of BLEND alpha 0.5 (y = 2): each
+  // passes with probability 0.5 and then carries the pane's straight transmittance. The occlusion
+  // query decides the BLEND surface as it looks past the pane; the walk that then measures the pane
+  // must not decide it a second time (with a ray of its own, which would let a quarter through).
+  SceneDesc desc;
+  test::add_quad(desc, Vec3(-4, 1, -4), Vec3(0, 0, 8), Vec3(8, 0, 0),
+                 test::add_glass(desc, kIor, Rgb(1.0f), 1.0f, /*thin_walled=*/true));
+  const int leaf = test::add_material(desc, Rgb(0.5f));
+  desc.materials[size_t(leaf)].base_alpha = 0.5f;
+  desc.materials[size_t(leaf)].alpha_mode = MaterialDesc::AlphaMode::Blend;
+  test::add_quad(desc, Vec3(-4, 2, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), leaf);
+  const Scene scene(std::move(desc), &material_alpha);
+  ASSERT_TRUE(scene.sees_every_sheet());
+
+  constexpr int kRays = 4000;
+  Pcg32 rng(3, 11);
+  std::vector<Ray> rays;
+  for (int i = 0; i < kRays; ++i) {
+    const Vec3 o(4 * rng.next_float() - 2, 0.5f, 4 * rng.next_float() - 2);
+    rays.emplace_back(o, Vec3(0, 2.5f, 0), 0.0f, 1.0f);
+  }
+  const std::vector<float> iors(kRays, 1.0f);
+  std::vector<Rgb> through(kRays);
+  RayCounters counters;
+  shadow_transmittance(scene, rays.data(), iors.data(), nullptr, kRays, through.data(), counters);
+  const float straight = float(1 - sheet_reflectance(1.0));  // at normal incidence
+  int passed = 0;
+  for (int i = 0; i < kRays; ++i) {
+    if (is_black(through[i])) continue;
+    ++passed;
+    EXPECT_NEAR(through[i].y, straight, 1e-4f) << "ray " << i;
+  }
+  // Binomial: 0.5 with standard deviation sqrt(0.25 / kRays) = 0.0079; four of them.
+  EXPECT_NEAR(double(passed) / kRays, 0.5, 4 * std::sqrt(0.25 / kRays));
 }
 
 TEST(SheetCrossing, ASheetSphereIsNotSeenPastByOcclusion) {

@@ -234,7 +234,6 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
         if (!through) return {};
         s.wi = through->w;
         drawn_in = through->triangle;
-        s.through_portal = true;
       } else {
         u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
         s.wi = environment_.sample(u, pdf_dir);

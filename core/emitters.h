@@ -30,7 +30,6 @@ struct EmitterSample {
   bool infinite = false;  // the environment: nothing to hit but the sky
   Vec3 wi;                // punctual and environment: unit direction toward the light
   float distance = 0;     // punctual: to the light (+inf for directional and environment)
-  bool through_portal = false;  // the environment drawn through a window: its shadow ray crosses a sheet
   // Punctual: irradiance at a surface facing the light. Environment: radiance along -wi.
   Rgb incident;
 };

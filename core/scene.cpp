@@ -372,7 +372,7 @@ namespace {
 struct SheetContext {
   LeavingContext leaving;
   const Scene* scene;
-  bool* crossed_sheet;  // by ray id
+  Scene::SheetsCrossed* crossed;  // by ray id
 };
 
 }  // namespace
@@ -389,23 +389,47 @@ void Scene::sheet_filter(const RTCFilterFunctionNArguments* args) {
   const auto* c = reinterpret_cast<const SheetContext*>(args->context);
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
-    if (!args->valid[i] || !c->scene->is_sheet_hit(RTCHitN_geomID(args->hit, N, i), RTCHitN_instID(args->hit, N, i, 0)))
-      continue;
-    c->crossed_sheet[RTCRayN_id(args->ray, N, i)] = true;
+    const unsigned geom = RTCHitN_geomID(args->hit, N, i), inst = RTCHitN_instID(args->hit, N, i, 0);
+    if (!args->valid[i] || !c->scene->is_sheet_hit(geom, inst)) continue;
     args->valid[i] = 0;  // not a blocker: look on past it
+    SheetsCrossed& seen = c->crossed[RTCRayN_id(args->ray, N, i)];
+    const unsigned prim = RTCHitN_primID(args->hit, N, i);
+    const float t = RTCRayN_tfar(args->ray, N, i);  // the candidate hit's distance (Embree's filter contract)
+    bool again = false;
+    for (int j = 0; j < std::min(seen.count, SheetsCrossed::kKept); ++j) {
+      const SheetsCrossed::Crossing& m = seen.met[j];
+      // Rounding separates one point's distances on two triangles by an ulp or so; two sheets
+      // closer than this are one surface to a walk, whose next segment starts past both.
+      again |= (m.geom == geom && m.inst == inst && m.prim == prim) || std::abs(m.t - t) <= 1e-6f * std::max(m.t, t);
+    }
+    if (again) continue;
+    if (seen.count < SheetsCrossed::kKept)
+      seen.met[seen.count] = {geom, inst, prim, RTCHitN_u(args->hit, N, i), RTCHitN_v(args->hit, N, i), t};
+    ++seen.count;
   }
 }
 
-void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, bool* crossed_sheet) const {
+void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, SheetsCrossed* crossed) const {
   for (int first = 0; first < n; first += kPacketSize) {
     const int m = std::min(n - first, kPacketSize);
-    SheetContext c{leaving_context(rays + first, m, false), this, crossed_sheet + first};
+    SheetContext c{leaving_context(rays + first, m, false), this, crossed + first};
     c.leaving.context.filter = sheet_filter;
-    for (int k = 0; k < m; ++k) crossed_sheet[first + k] = false;
+    for (int k = 0; k < m; ++k) crossed[first + k] = {};
     occluded8(rays + first, m, blocked + first, &c.leaving.context);
     for (int k = 0; k < m; ++k)
-      if (blocked[first + k]) crossed_sheet[first + k] = false;
+      if (blocked[first + k]) crossed[first + k] = {};
   }
+}
+
+void Scene::sheet_hit(const Ray& ray, const SheetsCrossed::Crossing& crossed, SurfaceHit& hit) const {
+  RTCRayHit rh = to_embree(ray);
+  rh.ray.tfar = crossed.t;
+  rh.hit.geomID = crossed.geom;
+  rh.hit.primID = crossed.prim;
+  rh.hit.instID[0] = crossed.inst;
+  rh.hit.u = crossed.u;
+  rh.hit.v = crossed.v;
+  resolve_hit(ray, rh, hit);
 }
 
 bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {

@@ -51,11 +51,26 @@ class Scene {
   static constexpr int kPacketSize = kEmbreePacketSize;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found, bool coherent = false) const;
   void occluded_packet(const Ray* rays, int n, bool* occluded) const;
+  // The thin-sheet triangles an occlusion query looked past, for one ray: where it met each, enough
+  // to rebuild the hit (sheet_hit).
+  struct SheetsCrossed {
+    static constexpr int kKept = 4;  // a double-glazed window, seen across a shared edge, is 4
+    struct Crossing {
+      unsigned geom = 0, inst = 0, prim = 0;
+      float u = 0, v = 0, t = 0;
+    };
+    // Distinct crossings met, in no particular order; a triangle met twice, or two met at the same
+    // distance (a shared edge), count once. Only the first kKept are kept.
+    int count = 0;
+    Crossing met[kKept];
+  };
   // Occlusion that looks past thin sheets (MaterialDesc::is_thin_sheet): blocked[k] when something
-  // else blocks rays[k]; crossed_sheet[k] when a sheet lies within its range (set only for rays not
-  // blocked). One packet query answers most shadow rays of a scene with glass panes; only those
-  // that cross a sheet need its transmittance. Requires sees_every_sheet().
-  void occluded_past_sheets(const Ray* rays, int n, bool* blocked, bool* crossed_sheet) const;
+  // else blocks rays[k]; crossed[k] the sheets within its range (count 0 for rays blocked). One
+  // packet query answers the shadow rays of a scene with glass panes, those through a window too:
+  // only the panes' transmittance is left to work out. Requires sees_every_sheet().
+  void occluded_past_sheets(const Ray* rays, int n, bool* blocked, SheetsCrossed* crossed) const;
+  // The hit a crossing stands for, as intersect() would give it for `ray`.
+  void sheet_hit(const Ray& ray, const SheetsCrossed::Crossing& crossing, SurfaceHit& hit) const;
   // Whether occluded_past_sheets can tell every sheet apart: false when a sphere is one (the
   // spheres' own intersection code runs no filters).
   bool sees_every_sheet() const { return sees_every_sheet_; }

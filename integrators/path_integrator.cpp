@@ -47,7 +47,6 @@ struct PathIntegrator::ShadowQuery {
   bool cast = false;      // false: there is no shadow ray to trace
   Rgb* target = nullptr;
   float medium_ior = 1;  // of the medium the ray travels in, for the sheets it may cross
-  bool expects_sheet = false;  // drawn through a window: walk its hits at once
 };
 
 // How a vertex draws its next direction: from the BSDF, or with probability `share` (at most
@@ -110,7 +109,6 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   // The shadow ray travels in the medium on wi's side of the surface.
   Rgb sigma = media.sigma_a();
   q.medium_ior = media.ior();
-  q.expects_sheet = ls.through_portal;
   if ((dot(wi, hit.ng) > 0) != from_front && material.has_volume()) {
     MediumStack beyond = media;
     beyond.cross(material, hit.material, from_front);
@@ -323,7 +321,6 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   ShadowQuery shadows[kLanes];
   bool found[kLanes];
   float shadow_iors[kLanes];
-  bool shadow_expects_sheet[kLanes];
   Rgb through[kLanes];
   int shadow_lane[kLanes];
   for (int m = n; m > 0;) {
@@ -338,12 +335,11 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       if (shadows[i].cast) {
         shadow_rays[s] = shadows[i].ray;
         shadow_iors[s] = shadows[i].medium_ior;
-        shadow_expects_sheet[s] = shadows[i].expects_sheet;
         shadow_lane[s++] = i;
       }
       if (goes_on) live[still++] = k;
     }
-    shadow_transmittance(scene, shadow_rays, shadow_iors, shadow_expects_sheet, s, through, counters);
+    shadow_transmittance(scene, shadow_rays, shadow_iors, s, through, counters);
     for (int j = 0; j < s; ++j)
       if (!is_black(through[j])) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution * through[j];
     m = still;

@@ -7,6 +7,14 @@
 #include "materials/material_eval.h"
 
 namespace prism {
+namespace {
+
+// What the sheet at `hit` lets through along unit direction dir.
+Rgb straight_through(const SceneDesc& desc, const SurfaceHit& hit, const Vec3& dir, float medium_ior) {
+  return make_bsdf(desc, hit, -dir, desc.material(hit.material).ior / medium_ior).straight_through();
+}
+
+}  // namespace
 
 Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
                                  bool clear_but_sheets) {
@@ -22,7 +30,7 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
     const MaterialDesc& m = desc.material(hit.material);
     if (crossed == kMaxSheetCrossings || !(m.is_thin_sheet() || clear_but_sheets)) return {};
     if (m.is_thin_sheet()) {
-      tr *= make_bsdf(desc, hit, -dir, m.ior / medium_ior).straight_through();
+      tr *= straight_through(desc, hit, dir, medium_ior);
       if (is_black(tr)) return {};
     }
     if (unbounded) {
@@ -36,43 +44,44 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
   return {};
 }
 
-void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, const bool* expects_sheet,
-                          int n, Rgb* through, RayCounters& counters) {
-  constexpr int kPacket = Scene::kPacketSize;
-  bool blocked[kPacket], crossed[kPacket];
-  if (!scene.features().thin_sheets) {
-    for (int first = 0; first < n; first += kPacket) {
-      const int m = std::min(n - first, kPacket);
-      scene.occluded_packet(rays + first, m, blocked);
-      for (int k = 0; k < m; ++k) through[first + k] = Rgb(blocked[k] ? 0.0f : 1.0f);
-    }
+void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, int n, Rgb* through,
+                          RayCounters& counters) {
+  const bool sheets = scene.features().thin_sheets;
+  if (sheets && !scene.sees_every_sheet()) {  // the query cannot see past a sheet sphere: walk every ray
+    for (int k = 0; k < n; ++k) through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters);
     return;
   }
-  // The occlusion query cannot see past a sheet sphere: then every ray is walked.
-  const bool query = scene.sees_every_sheet();
-  Ray asked[kPacket];
-  int asked_index[kPacket];
+  constexpr int kPacket = Scene::kPacketSize;
+  bool blocked[kPacket];
+  Scene::SheetsCrossed crossed[kPacket];
   for (int first = 0; first < n; first += kPacket) {
     const int m = std::min(n - first, kPacket);
-    int q = 0;
-    for (int k = first; k < first + m; ++k) {
-      if (query && !(expects_sheet && expects_sheet[k])) {
-        asked[q] = rays[k];
-        asked_index[q++] = k;
-      } else {
-        through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters);
-      }
-    }
-    if (q == 0) continue;
-    scene.occluded_past_sheets(asked, q, blocked, crossed);
-    for (int j = 0; j < q; ++j) {
-      const int k = asked_index[j];
-      if (!crossed[j]) {
+    if (sheets)
+      scene.occluded_past_sheets(rays + first, m, blocked, crossed);
+    else
+      scene.occluded_packet(rays + first, m, blocked);
+    for (int j = 0; j < m; ++j) {
+      const int k = first + j;
+      const Scene::SheetsCrossed& c = crossed[j];
+      if (!sheets || c.count == 0) {
         through[k] = Rgb(blocked[j] ? 0.0f : 1.0f);
-        continue;
+      } else if (c.count <= Scene::SheetsCrossed::kKept) {
+        // The crossings' factors in the order a walk would meet them, so that it gives the same bits.
+        Scene::SheetsCrossed::Crossing met[Scene::SheetsCrossed::kKept];
+        std::copy(c.met, c.met + c.count, met);
+        std::sort(met, met + c.count, [](const auto& a, const auto& b) { return a.t < b.t; });
+        const Vec3 dir = normalize(rays[k].dir);
+        Rgb tr(1.0f);
+        for (int i = 0; i < c.count; ++i) {
+          SurfaceHit hit;
+          scene.sheet_hit(rays[k], met[i], hit);
+          tr *= straight_through(scene.desc(), hit, dir, medium_iors[k]);
+        }
+        through[k] = tr;
+      } else {
+        ++counters.shadow;
+        through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters, /*clear_but_sheets=*/true);
       }
-      ++counters.shadow;
-      through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters, /*clear_but_sheets=*/true);
     }
   }
 }

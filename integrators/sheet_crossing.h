@@ -27,12 +27,12 @@ inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shad
 Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
                                  bool clear_but_sheets = false);
 
-// What each of n shadow rays lets through, in any scene: 1 or 0 by an occlusion query, traced as
-// packets, where no thin sheet is in the way; the rays that cross one (Scene::occluded_past_sheets
-// tells which) are then walked with transmittance_through_sheets, counted as one more shadow ray.
-// medium_iors[k] is the index of the medium rays[k] travels in. Rays with expects_sheet[k] (null:
-// none) are walked without the query first: a ray toward the sky through a window crosses it.
-void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, const bool* expects_sheet,
-                          int n, Rgb* through, RayCounters& counters);
+// What each of n shadow rays lets through, in any scene: one occlusion query per packet of eight
+// answers 1 or 0, or, past thin sheets (Scene::occluded_past_sheets), names the sheets the ray
+// crosses, whose straight transmittances are then multiplied. A ray that crosses more of them than
+// the query keeps, and every ray in a scene with a sheet sphere, is walked with
+// transmittance_through_sheets instead. medium_iors[k] is the index of the medium rays[k] travels in.
+void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, int n, Rgb* through,
+                          RayCounters& counters);
 
 }  // namespace prism

@@ -87,7 +87,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
       // A window pane lets a lamp outside light the room.
       const float ior = media.ior();
       Rgb through;
-      shadow_transmittance(scene, &shadow, &ior, nullptr, 1, &through, counters);
+      shadow_transmittance(scene, &shadow, &ior, 1, &through, counters);
       direct += f * in.irradiance * cos_i * through;
     }
   }

@@ -187,17 +187,14 @@ TEST(SheetCrossing, OcclusionLooksPastSheetsAndNothingElse) {
       rays.emplace_back(o, w);
     }
   }
-  std::vector<char> blocked(kRays), crossed(kRays);
-  scene.occluded_past_sheets(rays.data(), kRays, reinterpret_cast<bool*>(blocked.data()),
-                             reinterpret_cast<bool*>(crossed.data()));
-  // What the integrators ask: every third ray hinted to cross a sheet (walked without the query).
+  std::vector<char> blocked(kRays);
+  std::vector<Scene::SheetsCrossed> crossed(kRays);
+  scene.occluded_past_sheets(rays.data(), kRays, reinterpret_cast<bool*>(blocked.data()), crossed.data());
+  // What the integrators ask: the query, and the crossings' factors from the hits it met.
   std::vector<float> iors(kRays, 1.0f);
-  std::vector<char> hinted(kRays);
-  for (int i = 0; i < kRays; i += 3) hinted[i] = true;
   std::vector<Rgb> through(kRays);
   RayCounters counters;
-  shadow_transmittance(scene, rays.data(), iors.data(), reinterpret_cast<const bool*>(hinted.data()), kRays,
-                       through.data(), counters);
+  shadow_transmittance(scene, rays.data(), iors.data(), kRays, through.data(), counters);
   int counts[3] = {0, 0, 0};  // blocked, clear, crossed
   for (int i = 0; i < kRays; ++i) {
     const Rgb walked = transmittance_through_sheets(scene, rays[i], 1.0f, counters);
@@ -207,8 +204,8 @@ TEST(SheetCrossing, OcclusionLooksPastSheetsAndNothingElse) {
     if (blocked[i]) {
       ++counts[0];
       EXPECT_TRUE(is_black(walked)) << "ray " << i;
-      EXPECT_FALSE(crossed[i]) << "ray " << i;
-    } else if (!crossed[i]) {
+      EXPECT_EQ(crossed[i].count, 0) << "ray " << i;
+    } else if (crossed[i].count == 0) {
       ++counts[1];
       EXPECT_FALSE(found) << "ray " << i;
       EXPECT_EQ(walked.y, 1.0f) << "ray " << i;
@@ -221,51 +218,88 @@ TEST(SheetCrossing, OcclusionLooksPastSheetsAndNothingElse) {
   }
   for (const int c : counts)  // every case met often
     EXPECT_GT(c, kRays / 20) << "blocked " << counts[0] << ", clear " << counts[1] << ", crossed " << counts[2];
-  // Rays that cross the instanced pane twice placed (x > 0, z in (-2, 0)) and the baked one.
+  // Rays that cross the instanced pane twice placed (x > 0, z in (-2, 0)) and the baked one: one
+  // crossing each.
   for (const Vec3 o : {Vec3(1, 1.5f, -1), Vec3(-1, 1.5f, -1)}) {
     const Ray up(o, Vec3(0, 1, 0));
-    bool b = true, c = false;
+    bool b = true;
+    Scene::SheetsCrossed c;
     scene.occluded_past_sheets(&up, 1, &b, &c);
     EXPECT_FALSE(b);
-    EXPECT_TRUE(c);
+    EXPECT_EQ(c.count, 1);
   }
 }
 
-TEST(SheetCrossing, ABlendSurfaceBehindAPaneIsDecidedOnce) {
-  // Shadow segments up through a clear pane (y = 1), then a surface of BLEND alpha 0.5 (y = 2): each
-  // passes with probability 0.5 and then carries the pane's straight transmittance. The occlusion
-  // query decides the BLEND surface as it looks past the pane; the walk that then measures the pane
-  // must not decide it a second time (with a ray of its own, which would let a quarter through).
+TEST(SheetCrossing, APaneMetOnItsDiagonalIsCrossedOnce) {
+  // A ray along the edge the pane's two triangles share may be reported on both, at one distance:
+  // that is one crossing, as a walk (whose next segment starts past the plane) counts it.
   SceneDesc desc;
   test::add_quad(desc, Vec3(-4, 1, -4), Vec3(0, 0, 8), Vec3(8, 0, 0),
                  test::add_glass(desc, kIor, Rgb(1.0f), 1.0f, /*thin_walled=*/true));
-  const int leaf = test::add_material(desc, Rgb(0.5f));
-  desc.materials[size_t(leaf)].base_alpha = 0.5f;
-  desc.materials[size_t(leaf)].alpha_mode = MaterialDesc::AlphaMode::Blend;
-  test::add_quad(desc, Vec3(-4, 2, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), leaf);
-  const Scene scene(std::move(desc), &material_alpha);
-  ASSERT_TRUE(scene.sees_every_sheet());
+  const Scene scene(std::move(desc));
+  const float straight = float(1 - sheet_reflectance(1.0));
+  for (const float s : {-3.0f, -1.25f, 0.0f, 0.5f, 2.75f}) {
+    for (const Vec3 o : {Vec3(s, 0.5f, s), Vec3(s, 0.5f, -s)}) {  // the diagonal is one of the two
+      const Ray up(o, Vec3(0, 1, 0), 0.0f, 2.0f);
+      bool blocked = true;
+      Scene::SheetsCrossed crossed;
+      scene.occluded_past_sheets(&up, 1, &blocked, &crossed);
+      EXPECT_FALSE(blocked);
+      EXPECT_EQ(crossed.count, 1) << "at " << o.x << ", " << o.z;
+      const float ior = 1;
+      Rgb through;
+      RayCounters counters;
+      shadow_transmittance(scene, &up, &ior, 1, &through, counters);
+      EXPECT_NEAR(through.y, straight, 1e-6f) << "at " << o.x << ", " << o.z;
+    }
+  }
+}
 
-  constexpr int kRays = 4000;
-  Pcg32 rng(3, 11);
-  std::vector<Ray> rays;
-  for (int i = 0; i < kRays; ++i) {
-    const Vec3 o(4 * rng.next_float() - 2, 0.5f, 4 * rng.next_float() - 2);
-    rays.emplace_back(o, Vec3(0, 2.5f, 0), 0.0f, 1.0f);
+TEST(SheetCrossing, ABlendSurfaceBehindPanesIsDecidedOnce) {
+  // Shadow segments up through clear panes (from y = 1), then a surface of BLEND alpha 0.5 (y = 2):
+  // each passes with probability 0.5 and then carries the panes' straight transmittance. The
+  // occlusion query decides the BLEND surface as it looks past the panes. With one pane their
+  // factors come from the hits the query met; with more than it keeps, from a walk, which must not
+  // decide the BLEND surface a second time (its segments beyond a pane are rays of their own, and
+  // would let a quarter through).
+  for (const int panes : {1, Scene::SheetsCrossed::kKept + 1}) {
+    SceneDesc desc;
+    const int glass = test::add_glass(desc, kIor, Rgb(1.0f), 1.0f, /*thin_walled=*/true);
+    for (int i = 0; i < panes; ++i)
+      test::add_quad(desc, Vec3(-4, 1 + 0.1f * float(i), -4), Vec3(0, 0, 8), Vec3(8, 0, 0), glass);
+    const int leaf = test::add_material(desc, Rgb(0.5f));
+    desc.materials[size_t(leaf)].base_alpha = 0.5f;
+    desc.materials[size_t(leaf)].alpha_mode = MaterialDesc::AlphaMode::Blend;
+    test::add_quad(desc, Vec3(-4, 2, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), leaf);
+    const Scene scene(std::move(desc), &material_alpha);
+    ASSERT_TRUE(scene.sees_every_sheet());
+
+    constexpr int kRays = 4000;
+    Pcg32 rng(3, 11);
+    std::vector<Ray> rays;
+    for (int i = 0; i < kRays; ++i) {
+      const Vec3 o(4 * rng.next_float() - 2, 0.5f, 4 * rng.next_float() - 2);
+      rays.emplace_back(o, Vec3(0, 2.5f, 0), 0.0f, 1.0f);
+    }
+    const std::vector<float> iors(kRays, 1.0f);
+    std::vector<Rgb> through(kRays);
+    RayCounters counters;
+    shadow_transmittance(scene, rays.data(), iors.data(), kRays, through.data(), counters);
+    // The query counts every pane once, more than it keeps included.
+    bool blocked = true;
+    Scene::SheetsCrossed crossed;
+    for (int i = 0; blocked && i < kRays; ++i) scene.occluded_past_sheets(&rays[size_t(i)], 1, &blocked, &crossed);
+    EXPECT_EQ(crossed.count, panes);
+    const float straight = std::pow(float(1 - sheet_reflectance(1.0)), float(panes));  // at normal incidence
+    int passed = 0;
+    for (int i = 0; i < kRays; ++i) {
+      if (is_black(through[i])) continue;
+      ++passed;
+      EXPECT_NEAR(through[i].y, straight, 1e-4f) << panes << " panes, ray " << i;
+    }
+    // Binomial: 0.5 with standard deviation sqrt(0.25 / kRays) = 0.0079; four of them.
+    EXPECT_NEAR(double(passed) / kRays, 0.5, 4 * std::sqrt(0.25 / kRays)) << panes << " panes";
   }
-  const std::vector<float> iors(kRays, 1.0f);
-  std::vector<Rgb> through(kRays);
-  RayCounters counters;
-  shadow_transmittance(scene, rays.data(), iors.data(), nullptr, kRays, through.data(), counters);
-  const float straight = float(1 - sheet_reflectance(1.0));  // at normal incidence
-  int passed = 0;
-  for (int i = 0; i < kRays; ++i) {
-    if (is_black(through[i])) continue;
-    ++passed;
-    EXPECT_NEAR(through[i].y, straight, 1e-4f) << "ray " << i;
-  }
-  // Binomial: 0.5 with standard deviation sqrt(0.25 / kRays) = 0.0079; four of them.
-  EXPECT_NEAR(double(passed) / kRays, 0.5, 4 * std::sqrt(0.25 / kRays));
 }
 
 TEST(SheetCrossing, ASheetSphereIsNotSeenPastByOcclusion) {

@@ -414,10 +414,10 @@ void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, SheetsCr
     const int m = std::min(n - first, kPacketSize);
     SheetContext c{leaving_context(rays + first, m, false), this, crossed + first};
     c.leaving.context.filter = sheet_filter;
-    for (int k = 0; k < m; ++k) crossed[first + k] = {};
+    for (int k = 0; k < m; ++k) crossed[first + k].count = 0;
     occluded8(rays + first, m, blocked + first, &c.leaving.context);
     for (int k = 0; k < m; ++k)
-      if (blocked[first + k]) crossed[first + k] = {};
+      if (blocked[first + k]) crossed[first + k].count = 0;
   }
 }
 

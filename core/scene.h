@@ -54,10 +54,10 @@ class Scene {
   // The thin-sheet triangles an occlusion query looked past, for one ray: where it met each, enough
   // to rebuild the hit (sheet_hit).
   struct SheetsCrossed {
-    static constexpr int kKept = 4;  // a double-glazed window, seen across a shared edge, is 4
-    struct Crossing {
-      unsigned geom = 0, inst = 0, prim = 0;
-      float u = 0, v = 0, t = 0;
+    static constexpr int kKept = 16;  // as many as a path crosses straight (kMaxSheetCrossings)
+    struct Crossing {  // left uninitialised: count says which are set
+      unsigned geom, inst, prim;
+      float u, v, t;
     };
     // Distinct crossings met, in no particular order; a triangle met twice, or two met at the same
     // distance (a shared edge), count once. Only the first kKept are kept.

@@ -16,8 +16,7 @@ Rgb straight_through(const SceneDesc& desc, const SurfaceHit& hit, const Vec3& d
 
 }  // namespace
 
-Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
-                                 bool clear_but_sheets) {
+Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters) {
   const SceneDesc& desc = scene.desc();
   const bool unbounded = std::isinf(ray.t_max);
   const Vec3 end = unbounded ? Vec3(0.0f) : ray.origin + ray.dir * ray.t_max;  // where the segment stops
@@ -28,11 +27,9 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
     if (crossed > 0) ++counters.shadow;
     if (!scene.intersect(ray, hit)) return tr;
     const MaterialDesc& m = desc.material(hit.material);
-    if (crossed == kMaxSheetCrossings || !(m.is_thin_sheet() || clear_but_sheets)) return {};
-    if (m.is_thin_sheet()) {
-      tr *= straight_through(desc, hit, dir, medium_ior);
-      if (is_black(tr)) return {};
-    }
+    if (!m.is_thin_sheet() || crossed == kMaxSheetCrossings) return {};
+    tr *= straight_through(desc, hit, dir, medium_ior);
+    if (is_black(tr)) return {};
     if (unbounded) {
       ray = spawn_ray(hit, dir);
       continue;
@@ -43,6 +40,8 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
   }
   return {};
 }
+
+static_assert(Scene::SheetsCrossed::kKept >= kMaxSheetCrossings, "the query keeps every crossing a walk would take");
 
 void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, int n, Rgb* through,
                           RayCounters& counters) {
@@ -65,7 +64,9 @@ void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medi
       const Scene::SheetsCrossed& c = crossed[j];
       if (!sheets || c.count == 0) {
         through[k] = Rgb(blocked[j] ? 0.0f : 1.0f);
-      } else if (c.count <= Scene::SheetsCrossed::kKept) {
+      } else if (c.count > kMaxSheetCrossings) {
+        through[k] = Rgb(0.0f);  // as the walk stops such a ray
+      } else {
         // The crossings' factors in the order a walk would meet them, so that it gives the same bits.
         Scene::SheetsCrossed::Crossing met[Scene::SheetsCrossed::kKept];
         std::copy(c.met, c.met + c.count, met);
@@ -78,9 +79,6 @@ void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medi
           tr *= straight_through(scene.desc(), hit, dir, medium_iors[k]);
         }
         through[k] = tr;
-      } else {
-        ++counters.shadow;
-        through[k] = transmittance_through_sheets(scene, rays[k], medium_iors[k], counters, /*clear_but_sheets=*/true);
       }
     }
   }

@@ -20,18 +20,14 @@ inline constexpr int kMaxSheetCrossings = 16;  // per straight segment, for shad
 // straight transmission for that direction (Bsdf::straight_through), and anything else, or more
 // than kMaxSheetCrossings sheets, stopping it (black). medium_ior is the index of the medium the
 // ray travels in. Each segment after the first counts as one more shadow ray.
-// With `clear_but_sheets` the ray is already known to be blocked by nothing but sheets
-// (Scene::occluded_past_sheets said so): anything else it meets is stepped over, not taken as a
-// blocker. That can only be a BLEND surface the query let the ray past; a segment spawned beyond
-// a sheet would decide it again by a hash of its own, and let (1 - alpha)^2 through, not 1 - alpha.
-Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters,
-                                 bool clear_but_sheets = false);
+Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, RayCounters& counters);
 
 // What each of n shadow rays lets through, in any scene: one occlusion query per packet of eight
 // answers 1 or 0, or, past thin sheets (Scene::occluded_past_sheets), names the sheets the ray
-// crosses, whose straight transmittances are then multiplied. A ray that crosses more of them than
-// the query keeps, and every ray in a scene with a sheet sphere, is walked with
-// transmittance_through_sheets instead. medium_iors[k] is the index of the medium rays[k] travels in.
+// crosses, whose straight transmittances are then multiplied: what transmittance_through_sheets
+// gives, without its closest hits. The query decides every surface with alpha once, by its own
+// ray. In a scene with a sheet sphere, which the query cannot see past, every ray is walked.
+// medium_iors[k] is the index of the medium rays[k] travels in.
 void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medium_iors, int n, Rgb* through,
                           RayCounters& counters);
 

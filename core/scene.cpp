@@ -312,9 +312,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  LeavingContext c = leaving_context(&ray, 1, false);
   bool blocked = false;
-  occluded8(&ray, 1, &blocked, &c.context);
+  occluded8(&ray, 1, &blocked);
   return blocked;
 }
 

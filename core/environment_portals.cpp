@@ -3,7 +3,6 @@
 #include <cmath>
 #include <new>
 
-
 namespace prism {
 namespace {
 

@@ -2,11 +2,14 @@
 // the Cornell box (the ceiling prism's own Mrays/s is measured against). Prints figures; asserts nothing.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
 
+#include "core/constants.h"
+#include "core/distribution_2d.h"
 #include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/sobol_sampler.h"
@@ -202,6 +205,28 @@ void BM_EmitterSampleManyLights(benchmark::State& state) {
   emitter_sample_benchmark(state, Vec3(0.3f, 0.0f, 0.4f) - scene.origin(), Vec3(0, 1, 0), scene);
 }
 BENCHMARK(BM_EmitterSampleManyLights)->Arg(0)->Arg(1);
+
+// An environment map's sampling density, as an HDRI gives it: 2048 x 1024 texels of sky that vary
+// by a factor of five, and a sun of 10 x 10 texels 20000 times brighter that takes most of the
+// weight. One direction per iteration (a row, then a texel within it).
+void BM_EnvironmentMapSample(benchmark::State& state) {
+  constexpr int kWidth = 2048, kHeight = 1024;
+  static const Distribution2D map = [] {
+    Pcg32 rng(3, 4);
+    std::vector<double> weights(size_t(kWidth) * kHeight);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const bool sun = x >= 1400 && x < 1410 && y >= 300 && y < 310;
+        weights[size_t(y) * kWidth + x] = (sun ? 20000.0 : 0.2 + 0.8 * rng.next_float()) * std::sin(kPi * (y + 0.5) / kHeight);
+      }
+    return Distribution2D(weights, kWidth, kHeight);
+  }();
+  Pcg32 rng(5, 6);
+  float pdf = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(map.sample({rng.next_float(), rng.next_float()}, pdf));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_EnvironmentMapSample);
 
 void BM_IntersectRandomRays(benchmark::State& state) {
   const Scene& scene = cornell_box();

@@ -9,9 +9,18 @@
 namespace prism {
 namespace {
 
-Rgb texel(const ImageDesc& img, int x, int y) {
-  const float* t = &img.texels[(size_t(y) * img.width + x) * img.channels];
+Rgb texel(const ImageDesc& img, size_t index) {
+  const float* t = &img.texels[index];
   return img.channels >= 3 ? Rgb(t[0], t[1], t[2]) : Rgb(t[0]);
+}
+Rgb texel(const ImageDesc& img, int x, int y) { return texel(img, (size_t(y) * img.width + x) * img.channels); }
+
+// The first float of the texel that holds map coordinates uv: nearest texel, the radiance being
+// piecewise constant exactly as the sampling density is.
+size_t texel_index(const ImageDesc& img, Vec2 uv) {
+  const int x = std::clamp(static_cast<int>(uv.x * float(img.width)), 0, img.width - 1);
+  const int y = std::clamp(static_cast<int>(uv.y * float(img.height)), 0, img.height - 1);
+  return (size_t(y) * img.width + x) * img.channels;
 }
 
 }  // namespace
@@ -65,11 +74,7 @@ Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
 Rgb EnvironmentLight::radiance(const Vec3& w) const {
   if (!present_) return {};
   if (!image_) return scale_;
-  const Vec2 uv = direction_to_uv(w);
-  // Nearest texel: the radiance is piecewise constant exactly as the sampling density is.
-  const int x = std::clamp(static_cast<int>(uv.x * float(image_->width)), 0, image_->width - 1);
-  const int y = std::clamp(static_cast<int>(uv.y * float(image_->height)), 0, image_->height - 1);
-  return texel(*image_, x, y) * scale_;
+  return texel(*image_, texel_index(*image_, direction_to_uv(w))) * scale_;
 }
 
 Vec3 EnvironmentLight::sample(Vec2 u, float& pdf) const {
@@ -79,6 +84,8 @@ Vec3 EnvironmentLight::sample(Vec2 u, float& pdf) const {
   }
   float pdf_uv = 0;
   const Vec2 uv = distribution_.sample(u, pdf_uv);
+  // The caller looks up this texel's radiance next: start the fetch from a large map's memory now.
+  __builtin_prefetch(&image_->texels[texel_index(*image_, uv)]);
   const Vec3 w = uv_to_direction(uv);
   // The density is looked up from the direction, as radiance() is: a sample on a texel edge may
   // round into the neighbour, and both must agree on which texel that is.

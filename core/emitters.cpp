@@ -186,17 +186,17 @@ float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n) 
 }
 
 float Emitters::environment_direction_pdf(const EnvironmentPortals::View* view, const Vec3& ref, const Vec3& w,
-                                          int drawn_in) const {
-  if (!view || !(view->total > 0)) return environment_.pdf(w);
-  return (1 - kPortalShare) * environment_.pdf(w) + kPortalShare * portals_.pdf(*view, ref, w, drawn_in);
+                                          float map_pdf, int drawn_in) const {
+  if (!view || !(view->total > 0)) return map_pdf;
+  return (1 - kPortalShare) * map_pdf + kPortalShare * portals_.pdf(*view, ref, w, drawn_in);
 }
 
-float Emitters::environment_pdf(const Vec3& ref, const Vec3& w) const {
+float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) const {
   if (environment_index_ < 0) return 0;
   const float pick = pick_probability(environment_index_, Vec3(), Vec3());
-  if (portals_.empty()) return pick * environment_.pdf(w);
+  if (portals_.empty()) return pick * map_pdf;
   const EnvironmentPortals::View view = portals_.view(ref);
-  return pick * environment_direction_pdf(&view, ref, w);
+  return pick * environment_direction_pdf(&view, ref, w, map_pdf);
 }
 
 int Emitters::triangle_base(int instance, int primitive) const {
@@ -219,9 +219,11 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
     EmitterSample s;
     s.infinite = true;
     s.emitter = static_cast<int>(i);
+    EnvironmentLight::Seen seen;
     float pdf_dir = 0;
     if (portals_.empty()) {
-      s.wi = environment_.sample(u, pdf_dir);
+      s.wi = environment_.sample(u, seen);
+      pdf_dir = seen.pdf;
     } else {
       // One draw chooses portal or map, then serves the one chosen (one-sample MIS: the density
       // of either is the mixture's).
@@ -234,15 +236,18 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
         if (!through) return {};
         s.wi = through->w;
         drawn_in = through->triangle;
+        seen = environment_.seen(s.wi);
       } else {
         u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
-        s.wi = environment_.sample(u, pdf_dir);
+        s.wi = environment_.sample(u, seen);
+        // In the mixture the map's density is w's own, even where sample() gave the draw none.
+        if (!(seen.pdf > 0)) seen.pdf = environment_.pdf(s.wi);
       }
-      pdf_dir = environment_direction_pdf(&view, ref, s.wi, drawn_in);
+      pdf_dir = environment_direction_pdf(&view, ref, s.wi, seen.pdf, drawn_in);
     }
     s.pdf = chosen->pmf * pdf_dir;
     s.distance = std::numeric_limits<float>::infinity();
-    s.incident = environment_.radiance(s.wi);
+    s.incident = seen.radiance;
     return s;
   }
   if (i >= emitters_.size()) {

@@ -63,8 +63,9 @@ class Emitters {
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
   const EnvironmentLight& environment() const { return environment_; }
   // Density of sample() choosing direction w toward the environment from `ref`, including the
-  // choice (it depends on ref where portals lead to the sky).
-  float environment_pdf(const Vec3& ref, const Vec3& w) const;
+  // choice (it depends on ref where portals lead to the sky); map_pdf is the environment's own
+  // density of w (EnvironmentLight::seen).
+  float environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) const;
   const EnvironmentPortals& portals() const { return portals_; }
   // The probability of choosing light `index` (an emitter, then punctual lights, then the
   // environment) from `ref`.
@@ -128,8 +129,8 @@ class Emitters {
   // lit through glass 0.65x the error of 0.5, with an open doorway as well 1.05x; PERFORMANCE.md).
   EnvironmentPortals portals_;
   static constexpr float kPortalShare = 0.75f;
-  // The environment's own density and the portals' mixed, at direction w from ref.
-  float environment_direction_pdf(const EnvironmentPortals::View* view, const Vec3& ref, const Vec3& w,
+  // The environment's own density (map_pdf, at w) and the portals' mixed, at direction w from ref.
+  float environment_direction_pdf(const EnvironmentPortals::View* view, const Vec3& ref, const Vec3& w, float map_pdf,
                                   int drawn_in = -1) const;
   // Punctual lights follow the area emitters in pick_ (light k is item size() + k); the
   // environment, when present, is the last item.

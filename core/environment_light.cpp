@@ -77,26 +77,37 @@ Rgb EnvironmentLight::radiance(const Vec3& w) const {
   return texel(*image_, texel_index(*image_, direction_to_uv(w))) * scale_;
 }
 
-Vec3 EnvironmentLight::sample(Vec2 u, float& pdf) const {
+EnvironmentLight::Seen EnvironmentLight::seen(const Vec3& w) const {
+  if (!present_) return {};
+  if (!image_) return {scale_, kInvFourPi};
+  const Vec2 uv = direction_to_uv(w);
+  return {texel(*image_, texel_index(*image_, uv)) * scale_, map_pdf(uv)};
+}
+
+Vec3 EnvironmentLight::sample(Vec2 u, Seen& seen) const {
   if (!image_) {
-    pdf = kInvFourPi;
+    seen = {scale_, kInvFourPi};
     return sample_uniform_sphere(u);
   }
   float pdf_uv = 0;
   const Vec2 uv = distribution_.sample(u, pdf_uv);
-  // The caller looks up this texel's radiance next: start the fetch from a large map's memory now.
+  // This texel's radiance is read below: start the fetch from a large map's memory now.
   __builtin_prefetch(&image_->texels[texel_index(*image_, uv)]);
   const Vec3 w = uv_to_direction(uv);
-  // The density is looked up from the direction, as radiance() is: a sample on a texel edge may
-  // round into the neighbour, and both must agree on which texel that is.
-  pdf = pdf_uv > 0 ? this->pdf(w) : 0.0f;
+  // Radiance and density are looked up from the direction, as for any other direction: a sample
+  // on a texel edge may round into the neighbour, and both must agree on which texel that is.
+  seen = this->seen(w);
+  if (!(pdf_uv > 0)) seen.pdf = 0;
   return w;
 }
 
 float EnvironmentLight::pdf(const Vec3& w) const {
   if (!present_) return 0;
   if (!image_) return kInvFourPi;
-  const Vec2 uv = direction_to_uv(w);
+  return map_pdf(direction_to_uv(w));
+}
+
+float EnvironmentLight::map_pdf(Vec2 uv) const {
   const float sin_t = std::sin(uv.y * kPi);
   return sin_t > 0 ? distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_t) : 0.0f;
 }

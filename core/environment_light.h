@@ -16,8 +16,15 @@ class EnvironmentLight {
   bool present() const { return present_; }
   // Radiance arriving along -w (w points from the scene toward the sky).
   Rgb radiance(const Vec3& w) const;
-  // A direction toward the sky and its solid-angle density.
-  Vec3 sample(Vec2 u, float& pdf) const;
+  // The radiance along -w and the solid-angle density of sample() drawing w, from one mapping of
+  // w onto the map (an atan2 and an acos): next-event estimation and MIS need both.
+  struct Seen {
+    Rgb radiance;
+    float pdf = 0;
+  };
+  Seen seen(const Vec3& w) const;
+  // A direction toward the sky, and what is seen along it.
+  Vec3 sample(Vec2 u, Seen& seen) const;
   float pdf(const Vec3& w) const;
   // Mean radiance luminance over the sphere, for choosing among lights.
   double mean_luminance() const { return mean_luminance_; }
@@ -27,6 +34,9 @@ class EnvironmentLight {
   Vec3 uv_to_direction(Vec2 uv) const;
 
  private:
+  // The solid-angle density of sampling the map at uv.
+  float map_pdf(Vec2 uv) const;
+
   const ImageDesc* image_ = nullptr;
   Rgb scale_{1, 1, 1};
   float cos_rot_ = 1, sin_rot_ = 0;

@@ -141,9 +141,12 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     const EnvironmentLight& env = emitters.environment();
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
-      const float weight =
-          path.prev_delta ? 1.0f : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(path.prev_p, w));
-      path.light_after(depth) += beta * env.radiance(w) * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
+      // The sky seen straight through delta events needs no density (no MIS).
+      const EnvironmentLight::Seen seen = path.prev_delta ? EnvironmentLight::Seen{env.radiance(w)} : env.seen(w);
+      const float weight = path.prev_delta
+                               ? 1.0f
+                               : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(path.prev_p, w, seen.pdf));
+      path.light_after(depth) += beta * seen.radiance * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
     return false;
   }

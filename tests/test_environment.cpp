@@ -98,10 +98,13 @@ TEST(Environment, MapSamplingMatchesItsPdf) {
     const EnvironmentLight env(desc);
     const std::string why = test::chi_square_sphere(
         [&](float, Vec2 u) -> std::optional<test::DirectionSample> {
-          float pdf = 0;
-          const Vec3 w = env.sample(u, pdf);
-          if (!(pdf > 0)) return std::nullopt;
-          return test::DirectionSample{w, pdf};
+          EnvironmentLight::Seen seen;
+          const Vec3 w = env.sample(u, seen);
+          // One mapping of w serves both: they agree with the separate lookups.
+          EXPECT_EQ(seen.pdf, env.pdf(w));
+          EXPECT_EQ(seen.radiance, env.radiance(w));
+          if (!(seen.pdf > 0)) return std::nullopt;
+          return test::DirectionSample{w, seen.pdf};
         },
         [&](const Vec3& w) { return env.pdf(w); });
     EXPECT_EQ(why, "") << rotation;

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/distribution_1d.h"
@@ -14,16 +16,17 @@ class Distribution2D {
  public:
   Distribution2D() = default;
   // weights[row * width + column]; rows run along v, columns along u.
-  Distribution2D(const std::vector<double>& weights, int width, int height) : width_(width), height_(height) {
-    std::vector<double> row_sums(height, 0.0);
-    rows_.reserve(height);
-    for (int y = 0; y < height; ++y) {
-      std::vector<double> row(weights.begin() + ptrdiff_t(y) * width, weights.begin() + ptrdiff_t(y + 1) * width);
-      for (double w : row) row_sums[y] += w > 0 ? w : 0.0;
-      rows_.emplace_back(row);
-    }
-    marginal_ = Distribution1D(row_sums);
-  }
+  Distribution2D(const std::vector<double>& weights, int width, int height)
+      : Distribution2D(width, height, [&](int y, std::vector<double>& row) {
+          std::copy(weights.begin() + ptrdiff_t(y) * width, weights.begin() + ptrdiff_t(y + 1) * width, row.begin());
+        }) {}
+  // Row by row, without the whole grid in memory: row_weights(y, row) fills row y's `width`
+  // weights. Rows are built in parallel (row_weights must allow that), each alone, so the result
+  // does not depend on the thread count.
+  Distribution2D(int width, int height, const std::function<void(int y, std::vector<double>& row)>& row_weights);
+
+  // Bytes a width x height distribution takes: each row's CDF in doubles, its guide, and the marginal.
+  static uint64_t footprint(int width, int height);
 
   bool empty() const { return marginal_.size() == 0; }
 

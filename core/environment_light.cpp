@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/constants.h"
+#include "core/memory_limit.h"
 #include "core/sampling.h"
 
 namespace prism {
@@ -35,20 +36,28 @@ EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
   if (env.image >= 0 && env.image < static_cast<int>(desc.images.size())) {
     image_ = &desc.images[env.image];
     const int w = image_->width, h = image_->height;
+    // The map is in memory already; its distribution comes on top (a double per texel).
+    require_memory(image_->texels.size() * sizeof(float) + Distribution2D::footprint(w, h),
+                   image_->name + ": the environment map with its sampling distribution");
     // Texels weighted by luminance and by the solid angle of their row (sin theta).
-    std::vector<double> weights(size_t(w) * h);
+    const auto row_sin = [h](int y) { return std::sin(kPi * (y + 0.5) / h); };
+    const auto weight = [&](int x, int y, double sin_t) {
+      return double(std::max(0.0f, luminance(texel(*image_, x, y) * scale_))) * sin_t;
+    };
     double sum = 0, solid_angle_sum = 0;
     for (int y = 0; y < h; ++y) {
-      const double sin_t = std::sin(kPi * (y + 0.5) / h);
+      const double sin_t = row_sin(y);
       for (int x = 0; x < w; ++x) {
-        const double l = std::max(0.0f, luminance(texel(*image_, x, y) * scale_));
-        weights[size_t(y) * w + x] = l * sin_t;
-        sum += l * sin_t;
+        sum += weight(x, y, sin_t);
         solid_angle_sum += sin_t;
       }
     }
     mean_luminance_ = solid_angle_sum > 0 ? sum / solid_angle_sum : 0.0;
-    distribution_ = Distribution2D(weights, w, h);
+    // Row by row: an 8K map's grid of weights in doubles alone would take 256 MiB.
+    distribution_ = Distribution2D(w, h, [&](int y, std::vector<double>& row) {
+      const double sin_t = row_sin(y);
+      for (int x = 0; x < w; ++x) row[size_t(x)] = weight(x, y, sin_t);
+    });
   } else {
     mean_luminance_ = std::max(0.0f, luminance(scale_));
   }

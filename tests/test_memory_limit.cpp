@@ -2,6 +2,7 @@
 // refused with both sizes before anything is allocated, and the loader sums a scene's parts.
 #include <gtest/gtest.h>
 
+#include "core/environment_light.h"
 #include "core/film.h"
 #include "core/memory_limit.h"
 #include "io/gltf_loader.h"
@@ -43,6 +44,29 @@ TEST(MemoryLimit, AFilmPastTheLimitIsRefusedWithItsEstimate) {
     FAIL() << "expected a MemoryLimitError";
   } catch (const MemoryLimitError& e) {
     EXPECT_STREQ(e.what(), "a 8192x8192 film needs about 6.0 GiB, more than the memory limit of 64 MiB (--memory-limit)");
+  }
+}
+
+// An environment map's sampling distribution takes more than its texels (a double per texel for
+// the CDFs): the two together are estimated, and refused before the distribution is built.
+TEST(MemoryLimit, AnEnvironmentMapsDistributionPastTheLimitIsRefused) {
+  const ScopedMemoryLimit limit(uint64_t(16) << 20);
+  const auto sky = [](int width, int height) {
+    SceneDesc desc;
+    desc.environment.present = true;
+    desc.environment.image = 0;
+    desc.images.push_back({"sky.exr", width, height, 1, std::vector<float>(size_t(width) * height, 1.0f)});
+    return desc;
+  };
+  const SceneDesc small = sky(512, 256), large = sky(2048, 1024);  // 8 MiB of texels, 18 MiB more to sample them
+  EXPECT_NO_THROW(EnvironmentLight{small});
+  try {
+    const EnvironmentLight env(large);
+    FAIL() << "expected a MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "sky.exr: the environment map with its sampling distribution needs about 26 MiB, more than the memory "
+                 "limit of 16 MiB (--memory-limit)");
   }
 }
 

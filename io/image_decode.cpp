@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/huge_pages.h"
 #include "core/memory_limit.h"
 #include "io/errors.h"
 #include "io/image_codecs.h"
@@ -32,7 +33,7 @@ ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, const std::string&
   img.width = spec.width;
   img.height = spec.height;
   img.channels = std::min(spec.channels, 4);
-  img.texels.resize(size_t(img.width) * img.height * img.channels);
+  resize_on_huge_pages(img.texels, size_t(img.width) * img.height * img.channels);
   std::string error;
   if (!in.read(img.channels, img.texels.data(), error)) throw InputError(file, element, "cannot decode image: " + error);
   if (space == ColorSpace::Auto) space = spec.is_float ? ColorSpace::Linear : ColorSpace::Srgb;

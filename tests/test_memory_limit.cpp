@@ -1,9 +1,11 @@
 // The memory limit: sizes parse and print as a user writes them, estimates past the limit are
-// refused with both sizes before anything is allocated, and the loader sums a scene's parts.
+// refused with both sizes before anything is allocated, and the loader sums a scene's parts. Also
+// huge pages for large buffers, a hint that must change no value.
 #include <gtest/gtest.h>
 
 #include "core/environment_light.h"
 #include "core/film.h"
+#include "core/huge_pages.h"
 #include "core/memory_limit.h"
 #include "io/gltf_loader.h"
 
@@ -68,6 +70,23 @@ TEST(MemoryLimit, AnEnvironmentMapsDistributionPastTheLimitIsRefused) {
                  "sky.exr: the environment map with its sampling distribution needs about 26 MiB, more than the memory "
                  "limit of 16 MiB (--memory-limit)");
   }
+}
+
+// Huge pages are a hint to the kernel: a buffer resized on them holds what it held, zeros after it,
+// and ranges too small or unaligned for a huge page are left alone.
+TEST(HugePages, AResizedBufferKeepsItsValues) {
+  std::vector<float> v = {1, 2, 3};
+  resize_on_huge_pages(v, size_t(3) << 20);  // 12 MiB
+  ASSERT_EQ(v.size(), size_t(3) << 20);
+  EXPECT_EQ(v[0], 1.0f);
+  EXPECT_EQ(v[2], 3.0f);
+  EXPECT_EQ(v[3], 0.0f);
+  EXPECT_EQ(v.back(), 0.0f);
+  resize_on_huge_pages(v, 2);
+  EXPECT_EQ(v, (std::vector<float>{1, 2}));
+  float small[3] = {4, 5, 6};
+  advise_huge_pages(small + 1, sizeof(float));
+  EXPECT_EQ(small[1], 5.0f);
 }
 
 TEST(MemoryLimit, TheTallyAddsAScenesParts) {

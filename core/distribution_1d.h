@@ -18,69 +18,89 @@ inline float rescale_to_unit(float u, double start, double width) {
   return static_cast<float>(std::clamp(r, 0.0, static_cast<double>(kOneMinusEpsilon)));
 }
 
+// A normalised CDF over `items` items and its guide table, held by whoever built them: what
+// sampling reads. The item drawn for u is the last i with cdf[i] <= u (so cdf[i] <= u < cdf[i+1],
+// and item i has weight > 0). guide[g] is the last i with cdf[i] <= g / slots, for slots + 1 evenly
+// spaced values: a draw in [g, g + 1) / slots falls on an item between guide[g] and guide[g + 1]
+// (the guide table of Chen and Asau 1974, ahead of a binary search). About one slot per four items,
+// so that the table adds an eighth to the CDF's memory and the search takes two or three steps.
+struct GuidedCdf {
+  const double* cdf = nullptr;      // items + 1 entries, from 0 to 1
+  const uint32_t* guide = nullptr;  // slots + 1 entries
+  size_t items = 0, slots = 0;
+
+  static size_t slots_for(size_t items) { return std::max<size_t>(1, std::bit_floor(items) / 4); }
+  // Writes the items + 1 entries of cdf from the weights (negative and non-finite ones count as
+  // zero) and returns their total; when that is 0 nothing is normalised and there is nothing to sample.
+  static double build_cdf(const double* weights, size_t items, double* cdf) {
+    cdf[0] = 0.0;
+    for (size_t i = 0; i < items; ++i) {
+      const double w = weights[i] > 0 && weights[i] < 1e300 ? weights[i] : 0.0;
+      cdf[i + 1] = cdf[i] + w;
+    }
+    const double total = cdf[items];
+    if (!(total > 0)) return 0;
+    for (size_t i = 0; i <= items; ++i) cdf[i] /= total;
+    cdf[items] = 1.0;
+    return total;
+  }
+  static void build_guide(const double* cdf, size_t items, uint32_t* guide, size_t slots) {
+    size_t i = 0;
+    for (size_t g = 0; g <= slots; ++g) {
+      const double value = double(g) / double(slots);
+      while (i < items && cdf[i + 1] <= value) ++i;
+      guide[g] = static_cast<uint32_t>(i);
+    }
+  }
+
+  float pmf(size_t i) const { return i < items ? static_cast<float>(cdf[i + 1] - cdf[i]) : 0.0f; }
+  // The item for u in [0, 1), by a binary search between the guide's two entries around u; u is
+  // rescaled to [0, 1) within the item's interval so one sample dimension can be reused.
+  size_t sample(float u, float* remapped) const {
+    const double x = u;
+    // x * slots is exact (slots is a power of two); the guide brackets the answer.
+    const size_t slot = x > 0 ? std::min(static_cast<size_t>(x * double(slots)), slots - 1) : 0;
+    const double* base = cdf + guide[slot];
+    for (size_t len = guide[slot + 1] - guide[slot] + 1; len > 1;) {
+      const size_t half = len / 2;
+      base = base[half] <= x ? base + half : base;
+      len -= half;
+    }
+    const size_t i = std::min(static_cast<size_t>(base - cdf), items - 1);
+    if (remapped) *remapped = rescale_to_unit(u, cdf[i], cdf[i + 1] - cdf[i]);
+    return i;
+  }
+};
+
 class Distribution1D {
  public:
   Distribution1D() = default;
   // Negative and non-finite weights count as zero. With all weights zero the
   // distribution is empty (size() == 0 after construction means nothing to sample).
   explicit Distribution1D(const std::vector<double>& weights) {
-    cdf_.resize(weights.size() + 1, 0.0);
-    for (size_t i = 0; i < weights.size(); ++i) {
-      const double w = weights[i] > 0 && weights[i] < 1e300 ? weights[i] : 0.0;
-      cdf_[i + 1] = cdf_[i] + w;
-    }
-    total_ = cdf_.back();
-    if (total_ <= 0) {
+    cdf_.resize(weights.size() + 1);
+    total_ = GuidedCdf::build_cdf(weights.data(), weights.size(), cdf_.data());
+    if (!(total_ > 0)) {
       cdf_.clear();
       return;
     }
-    for (double& c : cdf_) c /= total_;
-    cdf_.back() = 1.0;
-    build_guide();
+    guide_.resize(GuidedCdf::slots_for(weights.size()) + 1);
+    GuidedCdf::build_guide(cdf_.data(), weights.size(), guide_.data(), guide_.size() - 1);
   }
 
   size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
   double total() const { return total_; }
   // 0 past the end, and for every item of an empty distribution (all weights zero).
-  float pmf(size_t i) const { return i < size() ? static_cast<float>(cdf_[i + 1] - cdf_[i]) : 0.0f; }
+  float pmf(size_t i) const { return view().pmf(i); }
   // The weight of the items before item i, over the total: 0 for i = 0, 1 for i = size().
   double cdf(size_t i) const { return cdf_[i]; }
 
-  // Picks an item for u in [0,1) (the distribution must not be empty); returns its index and rescales u to [0,1) within the
-  // item's interval so one sample dimension can be reused.
-  // The item is the last i with cdf[i] <= u (so cdf[i] <= u < cdf[i+1], and item i has weight > 0),
-  // found by a binary search between the guide's two entries around u.
-  size_t sample(float u, float* remapped = nullptr) const {
-    const double x = u;
-    const size_t slots = guide_.size() - 1;
-    // x * slots is exact (slots is a power of two); the guide brackets the answer.
-    const size_t slot = x > 0 ? std::min(static_cast<size_t>(x * double(slots)), slots - 1) : 0;
-    const double* base = cdf_.data() + guide_[slot];
-    for (size_t len = guide_[slot + 1] - guide_[slot] + 1; len > 1;) {
-      const size_t half = len / 2;
-      base = base[half] <= x ? base + half : base;
-      len -= half;
-    }
-    const size_t i = std::min(static_cast<size_t>(base - cdf_.data()), size() - 1);
-    if (remapped) *remapped = rescale_to_unit(u, cdf_[i], cdf_[i + 1] - cdf_[i]);
-    return i;
-  }
+  // Picks an item for u in [0,1) (the distribution must not be empty); returns its index and
+  // rescales u to [0,1) within the item's interval so one sample dimension can be reused.
+  size_t sample(float u, float* remapped = nullptr) const { return view().sample(u, remapped); }
 
  private:
-  // guide_[g] is the last i with cdf[i] <= g / slots, for slots + 1 evenly spaced values g / slots:
-  // a draw in [g, g + 1) / slots falls on an item between guide_[g] and guide_[g + 1] (the guide
-  // table of Chen and Asau 1974, ahead of a binary search). About one slot per four items, so that
-  // the table adds an eighth to the CDF's memory and the search takes two or three steps.
-  void build_guide() {
-    const size_t slots = std::max<size_t>(1, std::bit_floor(size()) / 4);
-    guide_.resize(slots + 1);
-    size_t i = 0;
-    for (size_t g = 0; g <= slots; ++g) {
-      const double value = double(g) / double(slots);
-      while (i + 1 < cdf_.size() && cdf_[i + 1] <= value) ++i;
-      guide_[g] = static_cast<uint32_t>(i);
-    }
-  }
+  GuidedCdf view() const { return {cdf_.data(), guide_.data(), size(), guide_.empty() ? 0 : guide_.size() - 1}; }
 
   std::vector<double> cdf_;
   std::vector<uint32_t> guide_;

@@ -3,26 +3,34 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/huge_pages.h"
+
 namespace prism {
 
 Distribution2D::Distribution2D(int width, int height,
                                const std::function<void(int y, std::vector<double>& row)>& row_weights)
-    : width_(width), height_(height), rows_(size_t(std::max(height, 0))) {
-  std::vector<double> row_sums(rows_.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& range) {
-    std::vector<double> row(size_t(std::max(width, 0)));
+    : width_(std::max(width, 0)), height_(std::max(height, 0)), slots_(GuidedCdf::slots_for(size_t(width_))) {
+  resize_on_huge_pages(cdfs_, size_t(height_) * (size_t(width_) + 1));
+  resize_on_huge_pages(guides_, size_t(height_) * (slots_ + 1));
+  std::vector<double> row_sums(size_t(height_), 0.0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& range) {
+    std::vector<double> row(static_cast<size_t>(width_));
     for (int y = range.begin(); y != range.end(); ++y) {
       row_weights(y, row);
       for (double w : row) row_sums[size_t(y)] += w > 0 ? w : 0.0;
-      rows_[size_t(y)] = Distribution1D(row);
+      double* cdf = cdfs_.data() + size_t(y) * (size_t(width_) + 1);
+      // A row of no weight is never drawn (its marginal probability is 0): it needs no guide.
+      if (GuidedCdf::build_cdf(row.data(), row.size(), cdf) > 0)
+        GuidedCdf::build_guide(cdf, row.size(), guides_.data() + size_t(y) * (slots_ + 1), slots_);
     }
   });
   marginal_ = Distribution1D(row_sums);
 }
 
 uint64_t Distribution2D::footprint(int width, int height) {
-  const uint64_t cdf = (uint64_t(width) + 1) * sizeof(double), guide = (uint64_t(width) / 4 + 2) * sizeof(uint32_t);
-  return uint64_t(height) * (cdf + guide + sizeof(Distribution1D)) + (uint64_t(height) + 1) * sizeof(double);
+  const uint64_t cdf = (uint64_t(width) + 1) * sizeof(double);
+  const uint64_t guide = (GuidedCdf::slots_for(size_t(std::max(width, 0))) + 1) * sizeof(uint32_t);
+  return uint64_t(height) * (cdf + guide) + (uint64_t(height) + 1) * sizeof(double);
 }
 
 }  // namespace prism

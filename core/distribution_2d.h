@@ -34,7 +34,7 @@ class Distribution2D {
   Vec2 sample(Vec2 u, float& pdf) const {
     float ry = 0, rx = 0;
     const size_t y = marginal_.sample(u.y, &ry);
-    const Distribution1D& row = rows_[y];
+    const GuidedCdf row = row_cdf(y);
     const size_t x = row.sample(u.x, &rx);
     pdf = float(double(marginal_.pmf(y)) * row.pmf(x) * double(width_) * height_);
     return {(float(x) + rx) / float(width_), (float(y) + ry) / float(height_)};
@@ -43,13 +43,22 @@ class Distribution2D {
   float pdf(Vec2 p) const {
     const int x = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
     const int y = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
-    if (rows_[y].size() == 0) return 0;
-    return float(double(marginal_.pmf(y)) * rows_[y].pmf(x) * double(width_) * height_);
+    const float row_pmf = marginal_.pmf(size_t(y));
+    if (!(row_pmf > 0)) return 0;  // a row of no weight has no CDF to read
+    return float(double(row_pmf) * row_cdf(size_t(y)).pmf(size_t(x)) * double(width_) * height_);
   }
 
  private:
+  GuidedCdf row_cdf(size_t y) const {
+    return {cdfs_.data() + y * (size_t(width_) + 1), guides_.data() + y * (slots_ + 1), size_t(width_), slots_};
+  }
+
   int width_ = 0, height_ = 0;
-  std::vector<Distribution1D> rows_;
+  size_t slots_ = 0;  // guide slots per row
+  // Every row's CDF, and then every row's guide, one after another in one buffer each (a large
+  // map's can then sit on huge pages).
+  std::vector<double> cdfs_;
+  std::vector<uint32_t> guides_;
   Distribution1D marginal_;
 };
 

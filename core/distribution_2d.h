@@ -15,13 +15,8 @@ namespace prism {
 class Distribution2D {
  public:
   Distribution2D() = default;
-  // weights[row * width + column]; rows run along v, columns along u.
-  Distribution2D(const std::vector<double>& weights, int width, int height)
-      : Distribution2D(width, height, [&](int y, std::vector<double>& row) {
-          std::copy(weights.begin() + ptrdiff_t(y) * width, weights.begin() + ptrdiff_t(y + 1) * width, row.begin());
-        }) {}
-  // Row by row, without the whole grid in memory: row_weights(y, row) fills row y's `width`
-  // weights. Rows are built in parallel (row_weights must allow that), each alone, so the result
+  // Row by row, without the whole grid of weights in memory: row_weights(y, row) fills row y's
+  // `width` weights (rows run along v, columns along u). Rows are built in parallel (row_weights must allow that), each alone, so the result
   // does not depend on the thread count.
   Distribution2D(int width, int height, const std::function<void(int y, std::vector<double>& row)>& row_weights);
 

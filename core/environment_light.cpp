@@ -83,14 +83,14 @@ Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
 Rgb EnvironmentLight::radiance(const Vec3& w) const {
   if (!present_) return {};
   if (!image_) return scale_;
-  return texel(*image_, texel_index(*image_, direction_to_uv(w))) * scale_;
+  return map_radiance(direction_to_uv(w));
 }
 
 EnvironmentLight::Seen EnvironmentLight::seen(const Vec3& w) const {
   if (!present_) return {};
   if (!image_) return {scale_, kInvFourPi};
   const Vec2 uv = direction_to_uv(w);
-  return {texel(*image_, texel_index(*image_, uv)) * scale_, map_pdf(uv)};
+  return {map_radiance(uv), map_pdf(uv)};
 }
 
 Vec3 EnvironmentLight::sample(Vec2 u, Seen& seen) const {
@@ -115,6 +115,8 @@ float EnvironmentLight::pdf(const Vec3& w) const {
   if (!image_) return kInvFourPi;
   return map_pdf(direction_to_uv(w));
 }
+
+Rgb EnvironmentLight::map_radiance(Vec2 uv) const { return texel(*image_, texel_index(*image_, uv)) * scale_; }
 
 float EnvironmentLight::map_pdf(Vec2 uv) const {
   const float sin_t = std::sin(uv.y * kPi);

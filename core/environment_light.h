@@ -34,7 +34,8 @@ class EnvironmentLight {
   Vec3 uv_to_direction(Vec2 uv) const;
 
  private:
-  // The solid-angle density of sampling the map at uv.
+  // The map's radiance at uv, and the solid-angle density of sampling it there.
+  Rgb map_radiance(Vec2 uv) const;
   float map_pdf(Vec2 uv) const;
 
   const ImageDesc* image_ = nullptr;

@@ -187,6 +187,13 @@ void write_reference(const std::string& path, const PreparedRender& render, cons
   write_exr(path, settings.width, settings.height, film.resolve_rgba(), attributes);
 }
 
-ImageDesc film_image(const Film& film) { return {"", film.width(), film.height(), 4, film.resolve_rgba()}; }
+ImageDesc film_image(const Film& film) {
+  ImageDesc img;
+  img.width = film.width();
+  img.height = film.height();
+  img.channels = 4;
+  img.texels = film.resolve_rgba();
+  return img;
+}
 
 }  // namespace prism

@@ -19,6 +19,7 @@
 #include "core/spawn.h"
 #include "io/gltf_loader.h"
 #include "materials/bsdf.h"
+#include "materials/texture_lookup.h"
 
 namespace prism {
 namespace {
@@ -224,6 +225,32 @@ void BM_EnvironmentMapSample(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
 BENCHMARK(BM_EnvironmentMapSample);
+
+// A bilinear lookup at random uvs in a 2048 x 2048 RGBA texture, as incoherent bounce rays make
+// them: Arg 0 holds its texels as 8-bit codes (what prism keeps for PNG and JPEG), Arg 1 as floats.
+// The lookups wait on memory: 16 MiB of codes or 64 MiB of floats, against the caches.
+void BM_TextureLookup(benchmark::State& state) {
+  constexpr int kSize = 2048;
+  SceneDesc desc;
+  ImageDesc& img = desc.images.emplace_back();
+  img.width = img.height = kSize;
+  img.channels = 4;
+  Pcg32 fill(7, 8);
+  if (state.range(0) == 0) {
+    img.srgb = true;
+    img.bytes.resize(size_t(kSize) * kSize * 4);
+    for (uint8_t& b : img.bytes) b = static_cast<uint8_t>(fill.next_u32());
+  } else {
+    img.texels.resize(size_t(kSize) * kSize * 4);
+    for (float& t : img.texels) t = fill.next_float();
+  }
+  desc.textures.push_back(TextureDesc{0});
+  const TextureRef ref{0};
+  Pcg32 rng(5, 6);
+  for (auto _ : state) benchmark::DoNotOptimize(lookup_texture(desc, ref, {rng.next_float(), rng.next_float()}));
+  state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_TextureLookup)->Arg(0)->Arg(1);
 
 void BM_IntersectRandomRays(benchmark::State& state) {
   const Scene& scene = cornell_box();

@@ -43,11 +43,14 @@ Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m) {
   const int image = desc.textures[ref.texture].image;
   if (image < 0 || image >= static_cast<int>(desc.images.size())) return e;
   const ImageDesc& img = desc.images[image];
-  if (img.channels <= 0 || img.texels.empty()) return e;
+  if (img.channels <= 0 || img.texel_count() == 0) return e;
   double sum[3] = {0, 0, 0};
-  const size_t n = img.texels.size() / img.channels;
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) sum[c] += img.texels[i * img.channels + std::min(c, img.channels - 1)];
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Rgb t = img.texel(x, y).rgb;
+      for (int c = 0; c < 3; ++c) sum[c] += t[c];
+    }
+  const double n = double(img.texel_count());
   return e * Rgb(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 

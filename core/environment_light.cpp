@@ -37,7 +37,7 @@ EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
     image_ = &desc.images[env.image];
     const int w = image_->width, h = image_->height;
     // The map is in memory already; its distribution comes on top (a double per texel).
-    require_memory(image_->texels.size() * sizeof(float) + Distribution2D::footprint(w, h),
+    require_memory(image_->memory_bytes() + Distribution2D::footprint(w, h),
                    image_->name + ": the environment map with its sampling distribution");
     // Texels weighted by luminance and by the solid angle of their row (sin theta).
     const auto row_sin = [h](int y) { return std::sin(kPi * (y + 0.5) / h); };

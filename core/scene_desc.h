@@ -8,17 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "core/image_desc.h"
 #include "core/transform.h"
 #include "core/vec3.h"
 
 namespace prism {
-
-// Pixels in linear float, row 0 at the top (as images are stored), `channels` per texel.
-struct ImageDesc {
-  std::string name;
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> texels;
-};
 
 enum class WrapMode { Repeat, ClampToEdge, MirroredRepeat };
 
@@ -144,7 +138,7 @@ struct PunctualLightDesc {
 struct EnvironmentDesc {
   bool present = false;
   Rgb color{1, 1, 1};    // radiance in nits, or the map's multiplier
-  int image = -1;        // index into SceneDesc::images (linear), or -1 for a constant colour
+  int image = -1;        // index into SceneDesc::images (linear floats: read_image_file), or -1 for a constant colour
   float rotation = 0;    // radians about +Y, counter-clockwise seen from above
   std::string source;    // the map's file, for messages and metadata
 };

@@ -568,7 +568,7 @@ class Converter {
       out = magenta_image();
     }
     out.name = img.name.empty() ? img.uri : img.name;
-    tally_.add(out.texels.size() * sizeof(float), file_ + ": " + where);
+    tally_.add(out.memory_bytes(), file_ + ": " + where);
     const int index = static_cast<int>(desc_.images.size());
     desc_.images.push_back(std::move(out));
     image_map_[key] = index;

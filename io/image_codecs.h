@@ -15,6 +15,7 @@ class ImageCodecs {
   struct Info {
     int width = 0, height = 0, channels = 0;
     bool is_float = false;  // FLOAT, HALF or DOUBLE samples: linear data, not sRGB-encoded
+    bool is_8bit = false;   // UINT8 samples: read_bytes() gives them exactly
   };
   // An opened image whose header is read; read() decodes its first `channels` channels.
   class Input {
@@ -23,6 +24,8 @@ class ImageCodecs {
     virtual Info info() const = 0;
     // Fills width x height x channels floats; false with `error` set when the data is bad.
     virtual bool read(int channels, float* texels, std::string& error) = 0;
+    // Fills width x height x channels 8-bit codes, as stored (for is_8bit images).
+    virtual bool read_bytes(int channels, unsigned char* texels, std::string& error) = 0;
   };
 
   virtual ~ImageCodecs() = default;
@@ -41,4 +44,4 @@ const ImageCodecs& image_codecs();
 }  // namespace prism
 
 // The module's one export: its codecs, which live as long as the process.
-extern "C" const prism::ImageCodecs* prism_image_codecs_v1();
+extern "C" const prism::ImageCodecs* prism_image_codecs_v2();

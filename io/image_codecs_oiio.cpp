@@ -17,11 +17,18 @@ class OiioInput final : public ImageCodecs::Input {
     const OIIO::ImageSpec& spec = in_->spec();
     const auto base = spec.format.basetype;
     return {spec.width, spec.height, spec.nchannels,
-            base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE};
+            base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE,
+            base == OIIO::TypeDesc::UINT8};
   }
 
   bool read(int channels, float* texels, std::string& error) override {
     if (in_->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, texels)) return true;
+    error = in_->geterror();
+    return false;
+  }
+
+  bool read_bytes(int channels, unsigned char* texels, std::string& error) override {
+    if (in_->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, texels)) return true;
     error = in_->geterror();
     return false;
   }
@@ -71,7 +78,7 @@ class OiioCodecs final : public ImageCodecs {
 }  // namespace
 }  // namespace prism
 
-extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v1() {
+extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v2() {
   static const prism::OiioCodecs codecs;
   return &codecs;
 }

@@ -11,32 +11,36 @@
 
 namespace prism {
 
-float srgb_to_linear(float v) {
-  if (v <= 0.04045f) return v / 12.92f;
-  return std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 namespace {
 
 // Bounds the pixels a texture may have before anything is allocated (64k x 64k).
 constexpr uint64_t kMaxTexels = uint64_t(1) << 32;
 
-ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, const std::string& file, const std::string& element) {
+ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, TexelStorage storage, const std::string& file,
+                    const std::string& element) {
   const ImageCodecs::Info spec = in.info();
   if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0 ||
       uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexels)
     throw InputError(file, element, "image has an unusable size " + std::to_string(spec.width) + "x" +
                                         std::to_string(spec.height) + "x" + std::to_string(spec.channels));
-  require_memory(uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(std::min(spec.channels, 4)) * sizeof(float),
-                 element.empty() ? file : file + ": " + element);
+  const bool as_bytes = storage == TexelStorage::Compact && spec.is_8bit;
+  const uint64_t values = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(std::min(spec.channels, 4));
+  require_memory(values * (as_bytes ? 1 : sizeof(float)), element.empty() ? file : file + ": " + element);
   ImageDesc img;
   img.width = spec.width;
   img.height = spec.height;
   img.channels = std::min(spec.channels, 4);
-  resize_on_huge_pages(img.texels, size_t(img.width) * img.height * img.channels);
-  std::string error;
-  if (!in.read(img.channels, img.texels.data(), error)) throw InputError(file, element, "cannot decode image: " + error);
   if (space == ColorSpace::Auto) space = spec.is_float ? ColorSpace::Linear : ColorSpace::Srgb;
+  std::string error;
+  if (as_bytes) {
+    resize_on_huge_pages(img.bytes, size_t(values));
+    if (!in.read_bytes(img.channels, img.bytes.data(), error))
+      throw InputError(file, element, "cannot decode image: " + error);
+    img.srgb = space == ColorSpace::Srgb;
+    return img;
+  }
+  resize_on_huge_pages(img.texels, size_t(values));
+  if (!in.read(img.channels, img.texels.data(), error)) throw InputError(file, element, "cannot decode image: " + error);
   if (space == ColorSpace::Srgb) {
     // Alpha is linear coverage: in 2- and 4-channel images the last channel is left as is.
     const int colour = (img.channels == 2 || img.channels == 4) ? img.channels - 1 : img.channels;
@@ -49,19 +53,19 @@ ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, const std::string&
 }  // namespace
 
 ImageDesc decode_image(const unsigned char* data, size_t size, ColorSpace space, const std::string& file,
-                       const std::string& element) {
+                       const std::string& element, TexelStorage storage) {
   if (size == 0) throw InputError(file, element, "image has no data");
   std::string error;
   const std::unique_ptr<ImageCodecs::Input> in = image_codecs().open_memory(data, size, error);
   if (!in) throw InputError(file, element, "cannot decode image: " + error);
-  return read_from(*in, space, file, element);
+  return read_from(*in, space, storage, file, element);
 }
 
 ImageDesc read_image_file(const std::string& path, ColorSpace space) {
   std::string error;
   const std::unique_ptr<ImageCodecs::Input> in = image_codecs().open_file(path, error);
   if (!in) throw InputError(path, "", "cannot read image: " + error);
-  ImageDesc img = read_from(*in, space, path, "");
+  ImageDesc img = read_from(*in, space, TexelStorage::Float, path, "");
   img.name = path;
   return img;
 }

@@ -1,4 +1,4 @@
-// Image decoding through OpenImageIO from memory, into linear float texels.
+// Image decoding through OpenImageIO, into linear float texels or the 8-bit codes themselves.
 #pragma once
 
 #include <cstddef>
@@ -11,16 +11,18 @@ namespace prism {
 // Auto: float images (EXR, HDR) are linear, integer ones (PNG, JPEG) sRGB-encoded.
 enum class ColorSpace { Linear, Srgb, Auto };
 
+// How texels are kept. Float: linear floats, whatever the source. Compact: an 8-bit source keeps
+// its codes (ImageDesc::bytes, with ImageDesc::srgb saying how its colour channels decode).
+enum class TexelStorage { Float, Compact };
+
 // Decodes an encoded image (PNG, JPEG, EXR, ... sniffed from the bytes). With ColorSpace::Srgb
-// the colour channels (not alpha) are converted from the sRGB transfer function to linear.
-// Throws InputError naming `file` and `element` when the bytes do not decode.
+// the colour channels (not alpha) are converted from the sRGB transfer function to linear (or,
+// kept as bytes, marked to be). Throws InputError naming `file` and `element` when the bytes do
+// not decode.
 ImageDesc decode_image(const unsigned char* data, size_t size, ColorSpace space, const std::string& file,
-                       const std::string& element);
+                       const std::string& element, TexelStorage storage = TexelStorage::Compact);
 
-// Reads an image file from disk the same way.
+// Reads an image file from disk the same way, into floats.
 ImageDesc read_image_file(const std::string& path, ColorSpace space);
-
-// The sRGB electro-optical transfer function (IEC 61966-2-1), encoded [0,1] -> linear.
-float srgb_to_linear(float v);
 
 }  // namespace prism

@@ -24,16 +24,6 @@ int wrap_texel(int i, int n, WrapMode mode) {
 
 namespace {
 
-Rgba texel(const ImageDesc& img, int x, int y) {
-  const float* t = &img.texels[(size_t(y) * img.width + x) * img.channels];
-  switch (img.channels) {
-    case 1: return {Rgb(t[0]), 1.0f};
-    case 2: return {Rgb(t[0]), t[1]};
-    case 3: return {Rgb(t[0], t[1], t[2]), 1.0f};
-    default: return {Rgb(t[0], t[1], t[2]), t[3]};
-  }
-}
-
 // Integer part of a float coordinate, clamped to stay inside int for any uv.
 int floor_to_int(float v) {
   const float f = std::floor(v);
@@ -50,14 +40,14 @@ Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
   const float x = uv.x * static_cast<float>(img.width) - 0.5f;  // texel centres at half-integers
   const float y = uv.y * static_cast<float>(img.height) - 0.5f;
   if (tex.nearest) {
-    return texel(img, wrap_texel(floor_to_int(x + 0.5f), img.width, tex.wrap_s),
-                 wrap_texel(floor_to_int(y + 0.5f), img.height, tex.wrap_t));
+    return img.texel(wrap_texel(floor_to_int(x + 0.5f), img.width, tex.wrap_s),
+                     wrap_texel(floor_to_int(y + 0.5f), img.height, tex.wrap_t));
   }
   const int x0 = floor_to_int(x), y0 = floor_to_int(y);
   const float fx = x - std::floor(x), fy = y - std::floor(y);
   const int xa = wrap_texel(x0, img.width, tex.wrap_s), xb = wrap_texel(x0 + 1, img.width, tex.wrap_s);
   const int ya = wrap_texel(y0, img.height, tex.wrap_t), yb = wrap_texel(y0 + 1, img.height, tex.wrap_t);
-  const Rgba a = texel(img, xa, ya), b = texel(img, xb, ya), c = texel(img, xa, yb), d = texel(img, xb, yb);
+  const Rgba a = img.texel(xa, ya), b = img.texel(xb, ya), c = img.texel(xa, yb), d = img.texel(xb, yb);
   const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
   return {a.rgb * wa + b.rgb * wb + c.rgb * wc + d.rgb * wd, a.a * wa + b.a * wb + c.a * wc + d.a * wd};
 }

@@ -5,11 +5,6 @@
 
 namespace prism {
 
-struct Rgba {
-  Rgb rgb;
-  float a = 1.0f;
-};
-
 // Filtered value of `ref` at uv (glTF convention: (0,0) is the top-left of the image). An RGB or
 // grey image gives alpha 1; a grey image is replicated to RGB.
 Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv);

@@ -57,7 +57,12 @@ TEST(MemoryLimit, AnEnvironmentMapsDistributionPastTheLimitIsRefused) {
     SceneDesc desc;
     desc.environment.present = true;
     desc.environment.image = 0;
-    desc.images.push_back({"sky.exr", width, height, 1, std::vector<float>(size_t(width) * height, 1.0f)});
+    ImageDesc& img = desc.images.emplace_back();
+    img.name = "sky.exr";
+    img.width = width;
+    img.height = height;
+    img.channels = 1;
+    img.texels.assign(size_t(width) * height, 1.0f);
     return desc;
   };
   const SceneDesc small = sky(512, 256), large = sky(2048, 1024);  // 8 MiB of texels, 18 MiB more to sample them

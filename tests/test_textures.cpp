@@ -3,6 +3,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fstream>
+#include <iterator>
+#include <vector>
+
 #include "gltf_writer.h"
 #include "io/gltf_loader.h"
 #include "io/image_decode.h"
@@ -48,7 +52,9 @@ TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {
   ASSERT_EQ(s.images.size(), 1u);  // one image, decoded once for its colour space
   ASSERT_EQ(s.textures.size(), 2u);
   EXPECT_TRUE(s.features().textures);
-  EXPECT_NEAR(s.images[0].texels[1], srgb_to_linear(128.0f / 255.0f), 1e-6f);
+  EXPECT_TRUE(s.images[0].holds_bytes());  // an 8-bit PNG keeps its codes
+  EXPECT_TRUE(s.images[0].srgb);
+  EXPECT_NEAR(s.images[0].texel(0, 0).rgb.y, srgb_to_linear(128.0f / 255.0f), 1e-6f);
 
   // At a texel centre the bilinear value is the texel; the factor multiplies it.
   const Rgb left = base_color(s, s.materials[0], {0.25f, 0.5f});
@@ -64,6 +70,43 @@ TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {
   const Rgb clamped = base_color(s, s.materials[1], {7.0f, 0.5f});
   EXPECT_NEAR(clamped.z, 1.0f, 1e-6f);
   EXPECT_NEAR(clamped.x, 0.0f, 1e-6f);
+}
+
+// An 8-bit image kept as its codes reads exactly what decoding it to floats gives, texel for
+// texel, in both colour spaces and for every channel layout: keeping the bytes only saves memory.
+TEST(Textures, EightBitTexelsKeptAsBytesReadAsTheirFloatDecoding) {
+  const std::string dir = test::make_temp_dir("texbytes");
+  for (int channels : {1, 2, 3, 4}) {
+    // 64 x 4 texels whose values run through all 256 codes in every channel, shifted per channel.
+    const int width = 64, height = 4;
+    std::vector<unsigned char> pixels(size_t(width) * height * channels);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<unsigned char>((i / channels + 37 * (i % channels)) % 256);
+    const std::string path = dir + "/c" + std::to_string(channels) + ".png";
+    {
+      auto out = OIIO::ImageOutput::create(path);
+      ASSERT_TRUE(out);
+      ASSERT_TRUE(out->open(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8)));
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+      out->close();
+    }
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (ColorSpace space : {ColorSpace::Srgb, ColorSpace::Linear}) {
+      const ImageDesc bytes = decode_image(png.data(), png.size(), space, path, "image", TexelStorage::Compact);
+      const ImageDesc floats = decode_image(png.data(), png.size(), space, path, "image", TexelStorage::Float);
+      ASSERT_TRUE(bytes.holds_bytes());
+      ASSERT_FALSE(floats.holds_bytes());
+      EXPECT_EQ(bytes.memory_bytes() * sizeof(float), floats.memory_bytes());
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const Rgba a = bytes.texel(x, y), b = floats.texel(x, y);
+          ASSERT_EQ(a.rgb.x, b.rgb.x) << channels << " channels, texel " << x << "," << y;
+          ASSERT_EQ(a.rgb.y, b.rgb.y) << channels << " channels, texel " << x << "," << y;
+          ASSERT_EQ(a.rgb.z, b.rgb.z) << channels << " channels, texel " << x << "," << y;
+          ASSERT_EQ(a.a, b.a) << channels << " channels, texel " << x << "," << y;
+        }
+    }
+  }
 }
 
 TEST(Textures, KhrTextureTransformOffsetRotationScale) {

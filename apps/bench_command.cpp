@@ -29,19 +29,31 @@
 namespace prism {
 namespace {
 
-// The canonical scenes, from the source tree prism was built from; the heavy mesh only once
-// generated (scripts/bench does it).
+// The canonical scenes, from the source tree prism was built from; the generated ones (too large
+// for git) only once generated (scripts/bench does it).
 std::vector<std::string> canonical_scenes() {
   const std::filesystem::path root = PRISM_SOURCE_DIR;
   std::vector<std::string> scenes = {(root / "scenes/cornell-box/cornell-box.gltf").string(),
                                      (root / "scenes/cornell-glass/cornell-glass.json").string(),
                                      (root / "scenes/many-lights/many-lights.gltf").string(),
                                      (root / "scenes/window-room/window-room.json").string()};
-  const std::filesystem::path heavy = root / "scenes/heavy-mesh/heavy-mesh.glb";
-  if (std::filesystem::exists(heavy)) scenes.push_back(heavy.string());
-  else
-    fmt::print(stderr, "prism: note: {} is absent; generate it with scenes/heavy-mesh/generate.py (scripts/bench does)\n",
-               heavy.string());
+  struct Generated {
+    const char* scene;                    // what bench renders
+    std::vector<const char*> generated;  // what generate.py writes beside it
+  };
+  const Generated generated[] = {{"scenes/heavy-mesh/heavy-mesh.glb", {"heavy-mesh.glb"}},
+                                 {"scenes/hdri-textures/hdri-textures.json", {"hdri-textures.glb", "sky.hdr"}}};
+  for (const Generated& g : generated) {
+    const std::filesystem::path scene = root / g.scene;
+    bool present = true;
+    for (const char* file : g.generated) present = present && std::filesystem::exists(scene.parent_path() / file);
+    if (present) {
+      scenes.push_back(scene.string());
+      continue;
+    }
+    fmt::print(stderr, "prism: note: {} is not generated yet; generate it with {} (scripts/bench does)\n",
+               scene.string(), (scene.parent_path() / "generate.py").string());
+  }
   return scenes;
 }
 
@@ -263,7 +275,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
                "Mrays/s (all, camera, extension, shadow), peak memory and, with --references, relative MSE and efficiency");
   cmd->add_option("SCENES", o.scenes,
                   "Scenes to measure (default: scenes/cornell-box, scenes/cornell-glass, scenes/many-lights, "
-                  "scenes/window-room and, once generated, scenes/heavy-mesh)");
+                  "scenes/window-room and, once generated, scenes/heavy-mesh and scenes/hdri-textures)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (default 16)")->check(CLI::PositiveNumber);
   cmd->add_option("--res", o.resolution, "Image size WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--max-depth", o.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);

@@ -2,7 +2,19 @@
 Standard library only."""
 
 import base64
+import json
 import struct
+
+
+def write_glb(path, gltf, data):
+    """Writes gltf (a dict whose buffer 0 has no uri) and the bytes of buffer 0 as a binary glTF."""
+    json_bytes = json.dumps(gltf, separators=(",", ":")).encode()
+    json_bytes += b" " * (-len(json_bytes) % 4)
+    blob = bytes(data) + b"\0" * (-len(data) % 4)
+    with open(path, "wb") as f:
+        f.write(struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(json_bytes) + 8 + len(blob)))
+        f.write(struct.pack("<II", len(json_bytes), 0x4E4F534A) + json_bytes)
+        f.write(struct.pack("<II", len(blob), 0x004E4942) + blob)
 
 
 class GltfBuffer:
@@ -14,10 +26,13 @@ class GltfBuffer:
 
     def add_view(self, data, target):
         """Appends data as a new bufferView, 4-byte aligned as accessors need (target 34962 for
-        vertex attributes, 34963 for indices); returns the view's index."""
+        vertex attributes, 34963 for indices, None for an image); returns the view's index."""
         while len(self.data) % 4:
             self.data.append(0)
-        self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(data), "target": target})
+        view = {"buffer": 0, "byteOffset": len(self.data), "byteLength": len(data)}
+        if target is not None:
+            view["target"] = target
+        self.views.append(view)
         self.data.extend(data)
         return len(self.views) - 1
 

@@ -6,15 +6,13 @@ is not kept in git: run this script (scripts/bench does) to create it.
 
 Usage: generate.py [--segments N] [OUTPUT]   (N longitudes; N/2 latitudes; 2 N (N/2 - 1) triangles)"""
 import argparse
-import json
 import math
-import struct
 import sys
 from array import array
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from gltf_buffer import GltfBuffer  # noqa: E402  (scenes/gltf_buffer.py)
+from gltf_buffer import GltfBuffer, write_glb  # noqa: E402  (scenes/gltf_buffer.py)
 
 
 def blob(segments):
@@ -127,13 +125,7 @@ def main():
                           "rotation": [math.sin(angle / 2), 0, 0, math.cos(angle / 2)]})
     gltf["buffers"].append({"byteLength": len(blob_bytes)})
 
-    json_bytes = json.dumps(gltf, separators=(",", ":")).encode()
-    json_bytes += b" " * (-len(json_bytes) % 4)
-    blob_bytes.extend(b"\0" * (-len(blob_bytes) % 4))
-    with open(args.output, "wb") as f:
-        f.write(struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(json_bytes) + 8 + len(blob_bytes)))
-        f.write(struct.pack("<II", len(json_bytes), 0x4E4F534A) + json_bytes)
-        f.write(struct.pack("<II", len(blob_bytes), 0x004E4942) + bytes(blob_bytes))
+    write_glb(args.output, gltf, blob_bytes)
     print(f"{args.output}: {triangles} triangles")
 
 

@@ -630,9 +630,16 @@ SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const s
 SceneDesc load_gltf(const std::string& path, Diagnostics& diag) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "no such file");
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path, "", "cannot open for reading");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // One read of the whole file: a character at a time through istreambuf_iterator took 40 ms for
+  // a 9 MB glb (textures inside), more than tinygltf's parse of it.
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw InputError(path, "", "cannot read its size");
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
+    throw InputError(path, "", "cannot read the whole file");
   const std::string base = std::filesystem::path(path).parent_path().string();
   return load_gltf_from_memory(bytes, base.empty() ? "." : base, path, diag);
 }

@@ -39,6 +39,15 @@ struct ImageDesc {
   size_t texel_count() const { return size_t(width) * size_t(height); }
   size_t memory_bytes() const { return texels.size() * sizeof(float) + bytes.size(); }
 
+  // Starts fetching the texel at column x, row y into the cache.
+  void prefetch(int x, int y) const {
+    const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);
+    if (!bytes.empty())
+      __builtin_prefetch(&bytes[i]);
+    else
+      __builtin_prefetch(&texels[i]);
+  }
+
   // The texel at column x, row y, linear; grey is replicated to RGB, alpha is 1 without a channel.
   Rgba texel(int x, int y) const {
     const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);

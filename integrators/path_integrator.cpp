@@ -330,6 +330,11 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
     scene.intersect_packet(rays, m, hits, found, camera);
+    // Every lane's texels are asked for before the first lane shades: their cache misses, which
+    // each lane would otherwise wait out in turn, overlap.
+    if (scene.features().textures)
+      for (int i = 0; i < m; ++i)
+        if (found[i]) prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv);
 
     int s = 0, still = 0;
     for (int i = 0; i < m; ++i) {

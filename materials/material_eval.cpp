@@ -65,6 +65,13 @@ Vec3 shading_normal(const SceneDesc& scene, const MaterialDesc& m, const Surface
   return len > 0 && std::isfinite(len) ? n / len : hit.ns;
 }
 
+void prefetch_textures(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv) {
+  for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.emissive_texture, &m.transmission_texture, &m.specular_texture,
+                                &m.specular_color_texture})
+    if (ref->present()) prefetch_texture(scene, *ref, uv);
+}
+
 Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta) {
   const MaterialDesc& m = scene.material(hit.material);
   return Bsdf(surface_params(scene, m, hit.uv), shading_normal(scene, m, hit), hit.ng, wo, eta);

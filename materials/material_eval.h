@@ -28,6 +28,10 @@ Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& 
 // hit's tangent frame (glTF 2.0 §3.9.3: n = normalize(T x + B y + N z), x and y scaled).
 Vec3 shading_normal(const SceneDesc& scene, const MaterialDesc& m, const SurfaceHit& hit);
 
+// Starts fetching into the cache the texels every texture of `m` will read at uv (see
+// prefetch_texture).
+void prefetch_textures(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv);
+
 // The BSDF at a hit, for light leaving toward wo; eta = n_back / n_front at the surface.
 Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta);
 

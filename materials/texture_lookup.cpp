@@ -1,6 +1,7 @@
 #include "materials/texture_lookup.h"
 
 #include <cmath>
+#include <optional>
 
 namespace prism {
 
@@ -30,26 +31,55 @@ int floor_to_int(float v) {
   return f < -1e9f ? -1000000000 : (f > 1e9f ? 1000000000 : static_cast<int>(f));
 }
 
+// The texels a lookup at uv reads: the 2x2 block around it (bilinear, with the weights fx, fy of
+// its right column and bottom row), or the nearest one alone (xa, ya).
+struct Footprint {
+  int xa = 0, xb = 0, ya = 0, yb = 0;
+  float fx = 0, fy = 0;
+};
+
+std::optional<Footprint> footprint(const ImageDesc& img, const TextureDesc& tex, Vec2 uv) {
+  if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return std::nullopt;
+  const float x = uv.x * static_cast<float>(img.width) - 0.5f;  // texel centres at half-integers
+  const float y = uv.y * static_cast<float>(img.height) - 0.5f;
+  Footprint f;
+  if (tex.nearest) {
+    f.xa = wrap_texel(floor_to_int(x + 0.5f), img.width, tex.wrap_s);
+    f.ya = wrap_texel(floor_to_int(y + 0.5f), img.height, tex.wrap_t);
+    return f;
+  }
+  const int x0 = floor_to_int(x), y0 = floor_to_int(y);
+  f.fx = x - std::floor(x);
+  f.fy = y - std::floor(y);
+  f.xa = wrap_texel(x0, img.width, tex.wrap_s);
+  f.xb = wrap_texel(x0 + 1, img.width, tex.wrap_s);
+  f.ya = wrap_texel(y0, img.height, tex.wrap_t);
+  f.yb = wrap_texel(y0 + 1, img.height, tex.wrap_t);
+  return f;
+}
+
 }  // namespace
 
 Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
-  uv = ref.apply(uv);
   const TextureDesc& tex = scene.textures[ref.texture];
   const ImageDesc& img = scene.images[tex.image];
-  if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return {};
-  const float x = uv.x * static_cast<float>(img.width) - 0.5f;  // texel centres at half-integers
-  const float y = uv.y * static_cast<float>(img.height) - 0.5f;
-  if (tex.nearest) {
-    return img.texel(wrap_texel(floor_to_int(x + 0.5f), img.width, tex.wrap_s),
-                     wrap_texel(floor_to_int(y + 0.5f), img.height, tex.wrap_t));
-  }
-  const int x0 = floor_to_int(x), y0 = floor_to_int(y);
-  const float fx = x - std::floor(x), fy = y - std::floor(y);
-  const int xa = wrap_texel(x0, img.width, tex.wrap_s), xb = wrap_texel(x0 + 1, img.width, tex.wrap_s);
-  const int ya = wrap_texel(y0, img.height, tex.wrap_t), yb = wrap_texel(y0 + 1, img.height, tex.wrap_t);
-  const Rgba a = img.texel(xa, ya), b = img.texel(xb, ya), c = img.texel(xa, yb), d = img.texel(xb, yb);
+  const std::optional<Footprint> f = footprint(img, tex, ref.apply(uv));
+  if (!f) return {};
+  if (tex.nearest) return img.texel(f->xa, f->ya);
+  const Rgba a = img.texel(f->xa, f->ya), b = img.texel(f->xb, f->ya), c = img.texel(f->xa, f->yb),
+             d = img.texel(f->xb, f->yb);
+  const float fx = f->fx, fy = f->fy;
   const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
   return {a.rgb * wa + b.rgb * wb + c.rgb * wc + d.rgb * wd, a.a * wa + b.a * wb + c.a * wc + d.a * wd};
+}
+
+void prefetch_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
+  const TextureDesc& tex = scene.textures[ref.texture];
+  const ImageDesc& img = scene.images[tex.image];
+  const std::optional<Footprint> f = footprint(img, tex, ref.apply(uv));
+  if (!f) return;
+  img.prefetch(f->xa, f->ya);
+  if (!tex.nearest) img.prefetch(f->xa, f->yb);  // the second row; xb is nearly always in xa's line
 }
 
 }  // namespace prism

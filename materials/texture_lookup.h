@@ -9,6 +9,10 @@ namespace prism {
 // grey image gives alpha 1; a grey image is replicated to RGB.
 Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv);
 
+// Asks the cache for the texels lookup_texture(scene, ref, uv) will read, without waiting for
+// them: a path tracer issues these for a packet's hits at once, so their misses overlap.
+void prefetch_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv);
+
 // Integer texel coordinate i wrapped into [0, n) by `mode`.
 int wrap_texel(int i, int n, WrapMode mode);
 

@@ -3,7 +3,8 @@
 Run inside Blender, headless:
 
     blender -b --factory-startup --python-exit-code 1 --python cycles_render.py -- \
-        --gltf SCENE.gltf --out OUT.exr --res 512x512 --spp 64 --max-depth 8 [--seed 0]
+        --gltf SCENE.gltf --out OUT.exr --res 512x512 --spp 64 --max-depth 8 [--seed 0] \
+        [--bsdf principled [--specular auto|importer|zero]] [--env MAP.hdr [--env-rotation DEG]]
 
 What it does, in order:
   1. empties the factory start-up scene (its cube, lamp and camera would otherwise be rendered)
@@ -14,14 +15,19 @@ What it does, in order:
        same base colour (plus an Emission shader for emitters): glTF's diffuse lobe is Lambert,
        and with KHR_materials_ior = 1 there is no specular layer. With --bsdf principled the
        importer's Principled BSDF stays, with "Specular" set to 0 for ior 1 (the importer only
-       sets the IOR socket, which Principled ignores for opaque dielectrics); its diffuse is
-       not Lambert (4-10% brighter on the Cornell box);
+       sets the IOR socket, which Principled ignores for opaque dielectrics) and left at the
+       importer's 0.5 (F0 0.04, glTF's default ior 1.5) otherwise (--specular); its diffuse is
+       not Lambert (4-10% brighter on the Cornell box), and Blender 3.4's Principled adds the
+       specular lobe on top of an undiminished diffuse (not energy-conserving);
      - emitters of single-sided glTF materials emit from their front face only (Cycles'
        emission is two-sided; --two-sided-emission keeps that);
-  4. sets Cycles to unbiased, comparable settings: fixed sample count, no adaptive sampling,
+  4. with --env MAP, replaces the black world by an Environment Texture (equirectangular,
+     linear interpolation, colour space Linear) behind a Mapping node that turns it to prism's
+     orientation (ORIENTATION below), Background strength 1;
+  5. sets Cycles to unbiased, comparable settings: fixed sample count, no adaptive sampling,
      no denoising, no clamping, no glossy blur, no light threshold, 1-pixel box filter,
      bounces matched to prism's --max-depth (see BOUNCES below);
-  5. renders once, writes a float EXR, and prints one machine-readable line:
+  6. renders once, writes a float EXR, and prints one machine-readable line:
         CYCLES_RESULT render_s=<s> import_s=<s> spp=<n> max_bounces=<n> res=<w>x<h>
      render_s is the wall time of the render call (scene sync + BVH + path tracing + saving);
      run-peers prefers the path-tracing time it reads from Blender's log.
@@ -55,10 +61,61 @@ def parse_args():
     p.add_argument("--bsdf", choices=["principled", "diffuse"], default="diffuse",
                    help="a Lambert Diffuse BSDF (glTF's diffuse model, prism's) or the importer's "
                         "Principled BSDF with specular 0")
+    p.add_argument("--env", help="equirectangular environment map (linear EXR/HDR) lighting the "
+                        "scene like prism --env MAP; default: a black world")
+    p.add_argument("--env-strength", type=float, default=1.0, help="Background strength of --env")
+    p.add_argument("--env-rotation", type=float, default=ENV_ROTATION_Z,
+                   help="rotation of the map about Blender's +Z in degrees (Mapping node); the "
+                        "default puts the map where prism puts it (see ORIENTATION)")
+    p.add_argument("--specular", choices=["auto", "importer", "zero"], default="auto",
+                   help="with --bsdf principled: auto sets Specular to 0 where the glTF's ior is 1 "
+                        "and keeps the importer's value elsewhere (glTF's default ior 1.5: 0.5, "
+                        "F0 0.04); importer never changes it; zero always sets 0 (diagnosis)")
     p.add_argument("--two-sided-emission", dest="one_sided", action="store_false",
                    help="keep Cycles' two-sided emission (default: front faces only for "
                         "single-sided glTF materials, as glTF has no back face there)")
     return p.parse_args(argv)
+
+
+# ORIENTATION of --env. prism (core/environment_light.cpp): u = 0.5 + atan2(x, -z) / 2pi in glTF
+# axes, so the map's centre faces glTF -Z and u grows toward +X. Blender's importer maps glTF
+# (x, y, z) to Blender (x, -z, y), and Cycles' equirectangular lookup is
+# u = 0.5 - atan2(y, x) / 2pi in Blender axes (centre toward +X, u growing toward -Y).
+# Substituting, Cycles' u = prism's u - 0.25: same handedness (no mirror), a quarter turn apart.
+# A Mapping node rotating the lookup direction by -90 degrees about +Z makes them agree.
+# Checked empirically, see bench/peers/README.md.
+ENV_ROTATION_Z = -90.0
+
+
+def environment_world(path, strength, rotation_z):
+    """A world whose Background is the equirectangular map at path (linear), rotated about +Z."""
+    import math
+    world = bpy.context.scene.world
+    nt = world.node_tree
+    for node in list(nt.nodes):
+        nt.nodes.remove(node)
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    mapping = nt.nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation_z))
+    tex = nt.nodes.new("ShaderNodeTexEnvironment")
+    tex.projection = "EQUIRECTANGULAR"
+    tex.interpolation = "Linear"
+    tex.image = bpy.data.images.load(path, check_existing=True)
+    tex.image.colorspace_settings.name = "Linear"  # EXR/HDR are linear already; no view transform
+    bg = nt.nodes.new("ShaderNodeBackground")
+    bg.inputs["Strength"].default_value = strength
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    nt.links.new(coord.outputs["Generated"], mapping.inputs["Vector"])
+    nt.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+    nt.links.new(tex.outputs["Color"], bg.inputs["Color"])
+    nt.links.new(bg.outputs["Background"], out.inputs["Surface"])
+    # Importance-sample the map (Blender 3.4: world "Multiple Importance" on, map resolution
+    # automatic); both are Blender's defaults, set here so they do not depend on the start-up file.
+    world.cycles.sampling_method = "AUTOMATIC"
+    world.cycles.max_bounces = 1024
+    print(f"cycles_render: world: {path} x{strength:g}, rotated {rotation_z:g} deg about +Z, "
+          f"{tex.image.size[0]}x{tex.image.size[1]}")
 
 
 def empty_scene():
@@ -87,7 +144,7 @@ def import_gltf(path):
     bpy.ops.import_scene.gltf(filepath=path)
 
 
-def adjust_materials(bsdf_kind):
+def adjust_materials(bsdf_kind, specular="auto"):
     """Make the imported materials match glTF semantics (ior 1 = no specular layer)."""
     for mat in bpy.data.materials:
         if not mat.use_nodes:
@@ -99,8 +156,12 @@ def adjust_materials(bsdf_kind):
             emission_strength = node.inputs["Emission Strength"].default_value
             emission = tuple(node.inputs["Emission"].default_value)
             if bsdf_kind == "principled":
-                if abs(node.inputs["IOR"].default_value - 1.0) < 1e-6:
+                if specular == "zero" or (
+                        specular == "auto" and abs(node.inputs["IOR"].default_value - 1.0) < 1e-6):
                     node.inputs["Specular"].default_value = 0.0
+                print(f"cycles_render: material {mat.name}: principled, specular "
+                      f"{node.inputs['Specular'].default_value:g}, ior "
+                      f"{node.inputs['IOR'].default_value:g}")
                 continue
             # Lambert: Diffuse BSDF (roughness 0) plus, for emitters, an Emission shader.
             out_links = [l for l in links if l.from_node == node]
@@ -213,10 +274,12 @@ def main():
     t0 = time.perf_counter()
     empty_scene()
     import_gltf(args.gltf)
-    adjust_materials(args.bsdf)
+    adjust_materials(args.bsdf, args.specular)
     if args.one_sided:
         one_sided_emission()
     bounces, width, height = configure(args)
+    if args.env:
+        environment_world(args.env, args.env_strength, args.env_rotation)
     t1 = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     t2 = time.perf_counter()

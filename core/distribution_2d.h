@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "core/distribution_1d.h"
@@ -36,14 +37,26 @@ class Distribution2D {
   }
 
   float pdf(Vec2 p) const {
-    const int x = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
-    const int y = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
-    const float row_pmf = marginal_.pmf(size_t(y));
+    const auto [x, y] = cell(p);
+    const float row_pmf = marginal_.pmf(y);
     if (!(row_pmf > 0)) return 0;  // a row of no weight has no CDF to read
-    return float(double(row_pmf) * row_cdf(size_t(y)).pmf(size_t(x)) * double(width_) * height_);
+    return float(double(row_pmf) * row_cdf(y).pmf(x) * double(width_) * height_);
+  }
+
+  // Asks the cache for the CDF entries pdf(p) will read.
+  void prefetch(Vec2 p) const {
+    const auto [x, y] = cell(p);
+    if (!cdfs_.empty()) __builtin_prefetch(&cdfs_[y * (size_t(width_) + 1) + x]);
   }
 
  private:
+  // The column and row of the cell holding p.
+  std::pair<size_t, size_t> cell(Vec2 p) const {
+    const int x = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
+    const int y = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
+    return {size_t(x), size_t(y)};
+  }
+
   GuidedCdf row_cdf(size_t y) const {
     return {cdfs_.data() + y * (size_t(width_) + 1), guides_.data() + y * (slots_ + 1), size_t(width_), slots_};
   }

@@ -89,8 +89,14 @@ Rgb EnvironmentLight::radiance(const Vec3& w) const {
 EnvironmentLight::Seen EnvironmentLight::seen(const Vec3& w) const {
   if (!present_) return {};
   if (!image_) return {scale_, kInvFourPi};
+  return seen_at(direction_to_uv(w));
+}
+
+Vec2 EnvironmentLight::prefetch(const Vec3& w) const {
   const Vec2 uv = direction_to_uv(w);
-  return {map_radiance(uv), map_pdf(uv)};
+  __builtin_prefetch(&image_->texels[texel_index(*image_, uv)]);
+  distribution_.prefetch(uv);
+  return uv;
 }
 
 Vec3 EnvironmentLight::sample(Vec2 u, Seen& seen) const {

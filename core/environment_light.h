@@ -23,6 +23,15 @@ class EnvironmentLight {
     float pdf = 0;
   };
   Seen seen(const Vec3& w) const;
+  // The same, for a map's sky, at the map coordinates of w (direction_to_uv(w)).
+  Seen seen_at(Vec2 uv) const { return {map_radiance(uv), map_pdf(uv)}; }
+  // True when the sky is an image (not one constant colour).
+  bool has_map() const { return image_ != nullptr; }
+  // For a map's sky: the map coordinates of the unit vector w, with the texel and the density
+  // seen_at() will read there already asked of the cache (their misses overlap other work).
+  Vec2 prefetch(const Vec3& w) const;
+  // The map's radiance at uv (has_map() only).
+  Rgb map_radiance(Vec2 uv) const;
   // A direction toward the sky, and what is seen along it.
   Vec3 sample(Vec2 u, Seen& seen) const;
   float pdf(const Vec3& w) const;
@@ -34,8 +43,7 @@ class EnvironmentLight {
   Vec3 uv_to_direction(Vec2 uv) const;
 
  private:
-  // The map's radiance at uv, and the solid-angle density of sampling it there.
-  Rgb map_radiance(Vec2 uv) const;
+  // The solid-angle density of sampling the map at uv.
   float map_pdf(Vec2 uv) const;
 
   const ImageDesc* image_ = nullptr;

@@ -127,8 +127,8 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
 // five whether or not it uses them (no light sampling at delta surfaces, no roulette before its
 // start depth): a dimension then means the same decision in every sample of a pixel, and stays
 // stratified across them (pbrt-v4 does the same).
-bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* found, ShadowQuery& shadow,
-                             RayCounters& counters) const {
+bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* found, const Vec2* sky_uv,
+                             ShadowQuery& shadow, RayCounters& counters) const {
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   Sampler& sampler = *path.sampler;
@@ -142,7 +142,11 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     if (env.present()) {
       const Vec3 w = normalize(path.ray.dir);
       // The sky seen straight through delta events needs no density (no MIS).
-      const EnvironmentLight::Seen seen = path.prev_delta ? EnvironmentLight::Seen{env.radiance(w)} : env.seen(w);
+      EnvironmentLight::Seen seen;
+      if (sky_uv)
+        seen = path.prev_delta ? EnvironmentLight::Seen{env.map_radiance(*sky_uv)} : env.seen_at(*sky_uv);
+      else
+        seen = path.prev_delta ? EnvironmentLight::Seen{env.radiance(w)} : env.seen(w);
       const float weight = path.prev_delta
                                ? 1.0f
                                : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(path.prev_p, w, seen.pdf));
@@ -330,16 +334,24 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
     scene.intersect_packet(rays, m, hits, found, camera);
-    // Every lane's texels are asked for before the first lane shades: their cache misses, which
-    // each lane would otherwise wait out in turn, overlap.
-    if (scene.features().textures)
-      for (int i = 0; i < m; ++i)
-        if (found[i]) prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv);
+    // Every lane's texels (of its hit's textures, or of the sky map it escaped to) are asked for
+    // before the first lane shades: their cache misses, which each lane would otherwise wait out
+    // in turn, overlap.
+    const EnvironmentLight& sky = scene.emitters().environment();
+    Vec2 sky_uv[kLanes];
+    if (scene.features().textures || sky.has_map())
+      for (int i = 0; i < m; ++i) {
+        if (!found[i])
+          sky_uv[i] = sky.has_map() ? sky.prefetch(normalize(rays[i].dir)) : Vec2{};
+        else if (scene.features().textures)
+          prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv);
+      }
 
     int s = 0, still = 0;
     for (int i = 0; i < m; ++i) {
       const int k = live[i];
-      const bool goes_on = advance(scene, paths[k], found[i] ? &hits[i] : nullptr, shadows[i], counters);
+      const bool goes_on = advance(scene, paths[k], found[i] ? &hits[i] : nullptr,
+                                   !found[i] && sky.has_map() ? &sky_uv[i] : nullptr, shadows[i], counters);
       if (shadows[i].cast) {
         shadow_rays[s] = shadows[i].ray;
         shadow_iors[s] = shadows[i].medium_ior;

@@ -38,8 +38,10 @@ class PathIntegrator final : public Integrator {
 
   // One bounce of a path at the surface its ray found (or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
-  // the path ends here.
-  bool advance(const Scene& scene, Path& path, const SurfaceHit* hit, ShadowQuery& shadow, RayCounters& counters) const;
+  // the path ends here. sky_uv: where an escaped ray meets the sky's map, when the caller mapped
+  // it already (EnvironmentLight::prefetch); null to map it here.
+  bool advance(const Scene& scene, Path& path, const SurfaceHit* hit, const Vec2* sky_uv, ShadowQuery& shadow,
+               RayCounters& counters) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
   ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,

@@ -56,9 +56,7 @@ void validate_scene_desc(const SceneDesc& desc) {
   for (const TextureDesc& t : desc.textures)
     if (t.image < 0 || t.image >= static_cast<int>(desc.images.size())) fail("texture image index out of range");
   for (const MaterialDesc& m : desc.materials)
-    for (const TextureRef* r : {&m.base_color_texture, &m.emissive_texture, &m.metallic_roughness_texture,
-                                &m.transmission_texture, &m.normal_texture, &m.specular_texture,
-                                &m.specular_color_texture})
+    for (const TextureRef* r : m.texture_slots())
       if (r->texture >= static_cast<int>(desc.textures.size()))
         fail("material '" + m.name + "': texture index out of range");
 }

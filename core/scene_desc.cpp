@@ -33,10 +33,8 @@ SceneFeatures SceneDesc::features() const {
   for (const auto& s : spheres)
     if (material(s.material).is_emissive()) f.emitters = true;
   for (const MaterialDesc& m : materials) {
-    if (m.base_color_texture.present() || m.emissive_texture.present() || m.metallic_roughness_texture.present() ||
-        m.transmission_texture.present() || m.normal_texture.present() || m.specular_texture.present() ||
-        m.specular_color_texture.present())
-      f.textures = true;
+    for (const TextureRef* r : m.texture_slots())
+      if (r->present()) f.textures = true;
     if (m.is_transmissive()) f.transmission = true;
     if (m.is_thin_sheet()) f.thin_sheets = true;
     if (m.has_alpha()) f.alpha = true;

@@ -66,6 +66,11 @@ struct MaterialDesc {
 
   bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
   bool has_alpha() const { return alpha_mode != AlphaMode::Opaque; }
+  // Every texture slot, present or not: what validation, feature detection and prefetching walk.
+  std::array<const TextureRef*, 7> texture_slots() const {
+    return {&base_color_texture,   &metallic_roughness_texture, &normal_texture,        &emissive_texture,
+            &transmission_texture, &specular_texture,           &specular_color_texture};
+  }
   bool is_transmissive() const { return transmission > 0 || transmission_texture.present(); }
   // A closed volume whose interior is a medium (refraction, absorption).
   bool has_volume() const { return volume && is_transmissive(); }

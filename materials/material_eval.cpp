@@ -66,9 +66,7 @@ Vec3 shading_normal(const SceneDesc& scene, const MaterialDesc& m, const Surface
 }
 
 void prefetch_textures(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv) {
-  for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
-                                &m.emissive_texture, &m.transmission_texture, &m.specular_texture,
-                                &m.specular_color_texture})
+  for (const TextureRef* ref : m.texture_slots())
     if (ref->present()) prefetch_texture(scene, *ref, uv);
 }
 

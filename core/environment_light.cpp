@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/constants.h"
 #include "core/memory_limit.h"
@@ -10,18 +11,11 @@
 namespace prism {
 namespace {
 
-Rgb texel(const ImageDesc& img, size_t index) {
-  const float* t = &img.texels[index];
-  return img.channels >= 3 ? Rgb(t[0], t[1], t[2]) : Rgb(t[0]);
-}
-Rgb texel(const ImageDesc& img, int x, int y) { return texel(img, (size_t(y) * img.width + x) * img.channels); }
-
-// The first float of the texel that holds map coordinates uv: nearest texel, the radiance being
+// The texel that holds map coordinates uv (column, row): nearest texel, the radiance being
 // piecewise constant exactly as the sampling density is.
-size_t texel_index(const ImageDesc& img, Vec2 uv) {
-  const int x = std::clamp(static_cast<int>(uv.x * float(img.width)), 0, img.width - 1);
-  const int y = std::clamp(static_cast<int>(uv.y * float(img.height)), 0, img.height - 1);
-  return (size_t(y) * img.width + x) * img.channels;
+std::pair<int, int> texel_at(const ImageDesc& img, Vec2 uv) {
+  return {std::clamp(static_cast<int>(uv.x * float(img.width)), 0, img.width - 1),
+          std::clamp(static_cast<int>(uv.y * float(img.height)), 0, img.height - 1)};
 }
 
 }  // namespace
@@ -42,7 +36,7 @@ EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
     // Texels weighted by luminance and by the solid angle of their row (sin theta).
     const auto row_sin = [h](int y) { return std::sin(kPi * (y + 0.5) / h); };
     const auto weight = [&](int x, int y, double sin_t) {
-      return double(std::max(0.0f, luminance(texel(*image_, x, y) * scale_))) * sin_t;
+      return double(std::max(0.0f, luminance(image_->texel(x, y).rgb * scale_))) * sin_t;
     };
     double sum = 0, solid_angle_sum = 0;
     for (int y = 0; y < h; ++y) {
@@ -94,7 +88,8 @@ EnvironmentLight::Seen EnvironmentLight::seen(const Vec3& w) const {
 
 Vec2 EnvironmentLight::prefetch(const Vec3& w) const {
   const Vec2 uv = direction_to_uv(w);
-  __builtin_prefetch(&image_->texels[texel_index(*image_, uv)]);
+  const auto [x, y] = texel_at(*image_, uv);
+  image_->prefetch(x, y);
   distribution_.prefetch(uv);
   return uv;
 }
@@ -107,7 +102,8 @@ Vec3 EnvironmentLight::sample(Vec2 u, Seen& seen) const {
   float pdf_uv = 0;
   const Vec2 uv = distribution_.sample(u, pdf_uv);
   // This texel's radiance is read below: start the fetch from a large map's memory now.
-  __builtin_prefetch(&image_->texels[texel_index(*image_, uv)]);
+  const auto [x, y] = texel_at(*image_, uv);
+  image_->prefetch(x, y);
   const Vec3 w = uv_to_direction(uv);
   // Radiance and density are looked up from the direction, as for any other direction: a sample
   // on a texel edge may round into the neighbour, and both must agree on which texel that is.
@@ -122,7 +118,10 @@ float EnvironmentLight::pdf(const Vec3& w) const {
   return map_pdf(direction_to_uv(w));
 }
 
-Rgb EnvironmentLight::map_radiance(Vec2 uv) const { return texel(*image_, texel_index(*image_, uv)) * scale_; }
+Rgb EnvironmentLight::map_radiance(Vec2 uv) const {
+  const auto [x, y] = texel_at(*image_, uv);
+  return image_->texel(x, y).rgb * scale_;
+}
 
 float EnvironmentLight::map_pdf(Vec2 uv) const {
   const float sin_t = std::sin(uv.y * kPi);

@@ -209,7 +209,8 @@ BENCHMARK(BM_EmitterSampleManyLights)->Arg(0)->Arg(1);
 
 // An environment map's sampling density, as an HDRI gives it: 2048 x 1024 texels of sky that vary
 // by a factor of five, and a sun of 10 x 10 texels 20000 times brighter that takes most of the
-// weight. One direction per iteration (a row, then a texel within it).
+// weight. Arg: how many draws go together (Distribution2D::sample's batch, as a packet's lanes
+// make them); items are draws (a row, then a texel within it).
 void BM_EnvironmentMapSample(benchmark::State& state) {
   constexpr int kWidth = 2048, kHeight = 1024;
   static const Distribution2D map(kWidth, kHeight, [](int y, std::vector<double>& row) {
@@ -219,12 +220,19 @@ void BM_EnvironmentMapSample(benchmark::State& state) {
       row[size_t(x)] = (sun ? 20000.0 : 0.2 + 0.8 * rng.next_float()) * std::sin(kPi * (y + 0.5) / kHeight);
     }
   });
+  const int batch = int(state.range(0));
   Pcg32 rng(5, 6);
-  float pdf = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(map.sample({rng.next_float(), rng.next_float()}, pdf));
-  state.SetItemsProcessed(int64_t(state.iterations()));
+  Vec2 u[8], p[8];
+  float pdf[8];
+  for (auto _ : state) {
+    for (int i = 0; i < batch; ++i) u[i] = {rng.next_float(), rng.next_float()};
+    map.sample(u, batch, p, pdf);
+    benchmark::DoNotOptimize(p);
+    benchmark::DoNotOptimize(pdf);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * batch);
 }
-BENCHMARK(BM_EnvironmentMapSample);
+BENCHMARK(BM_EnvironmentMapSample)->Arg(1)->Arg(8);
 
 // A bilinear lookup at random uvs in a 2048 x 2048 RGBA texture, as incoherent bounce rays make
 // them: Arg 0 holds its texels as 8-bit codes (what prism keeps for PNG and JPEG), Arg 1 as floats.

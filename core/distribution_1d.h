@@ -57,19 +57,29 @@ struct GuidedCdf {
   }
 
   float pmf(size_t i) const { return i < items ? static_cast<float>(cdf[i + 1] - cdf[i]) : 0.0f; }
-  // The item for u in [0, 1), by a binary search between the guide's two entries around u; u is
-  // rescaled to [0, 1) within the item's interval so one sample dimension can be reused.
-  size_t sample(float u, float* remapped) const {
+
+  // The CDF entries [first, first + len) the search for u stays within: between the guide's two
+  // entries around u, or the whole CDF without a guide.
+  struct Bracket {
+    size_t first = 0, len = 0;
+  };
+  // The guide entry bracket(u) reads first (the next is beside it), for asking the cache ahead.
+  const uint32_t* guide_entry(float u) const {
     const double x = u;
-    size_t first = 0, len = items + 1;
-    if (slots > 0) {
-      // x * slots is exact (slots is a power of two); the guide brackets the answer.
-      const size_t slot = x > 0 ? std::min(static_cast<size_t>(x * double(slots)), slots - 1) : 0;
-      first = guide[slot];
-      len = guide[slot + 1] - first + 1;
-    }
-    const double* base = cdf + first;
-    for (; len > 1;) {
+    // x * slots is exact (slots is a power of two); the guide brackets the answer.
+    return guide + (x > 0 ? std::min(static_cast<size_t>(x * double(slots)), slots - 1) : 0);
+  }
+  Bracket bracket(float u) const {
+    if (slots == 0) return {0, items + 1};
+    const uint32_t* g = guide_entry(u);
+    return {g[0], size_t(g[1] - g[0]) + 1};
+  }
+  // The item for u in [0, 1), by a binary search within b = bracket(u); u is rescaled to [0, 1)
+  // within the item's interval so one sample dimension can be reused.
+  size_t search(Bracket b, float u, float* remapped) const {
+    const double x = u;
+    const double* base = cdf + b.first;
+    for (size_t len = b.len; len > 1;) {
       const size_t half = len / 2;
       base = base[half] <= x ? base + half : base;
       len -= half;
@@ -78,6 +88,7 @@ struct GuidedCdf {
     if (remapped) *remapped = rescale_to_unit(u, cdf[i], cdf[i + 1] - cdf[i]);
     return i;
   }
+  size_t sample(float u, float* remapped) const { return search(bracket(u), u, remapped); }
 };
 
 class Distribution1D {

@@ -27,6 +27,36 @@ Distribution2D::Distribution2D(int width, int height,
   marginal_ = Distribution1D(row_sums);
 }
 
+void Distribution2D::sample(const Vec2* u, int n, Vec2* p, float* pdf) const {
+  constexpr int kBatch = 8;
+  for (int first = 0; first < n; first += kBatch) {
+    const int m = std::min(n - first, kBatch);
+    const Vec2* uu = u + first;
+    size_t y[kBatch];
+    float ry[kBatch];
+    // The marginal (a few KiB, in cache) picks each row; its guide entry is asked for.
+    for (int i = 0; i < m; ++i) {
+      y[i] = marginal_.sample(uu[i].y, &ry[i]);
+      if (slots_ > 0) __builtin_prefetch(row_cdf(y[i]).guide_entry(uu[i].x));
+    }
+    // The guide brackets the search; the CDF entries where it starts are asked for.
+    GuidedCdf::Bracket bracket[kBatch];
+    for (int i = 0; i < m; ++i) {
+      const GuidedCdf row = row_cdf(y[i]);
+      bracket[i] = row.bracket(uu[i].x);
+      __builtin_prefetch(row.cdf + bracket[i].first);
+      __builtin_prefetch(row.cdf + bracket[i].first + bracket[i].len - 1);
+    }
+    for (int i = 0; i < m; ++i) {
+      const GuidedCdf row = row_cdf(y[i]);
+      float rx = 0;
+      const size_t x = row.search(bracket[i], uu[i].x, &rx);
+      pdf[first + i] = float(double(marginal_.pmf(y[i])) * row.pmf(x) * double(width_) * height_);
+      p[first + i] = {(float(x) + rx) / float(width_), (float(y[i]) + ry[i]) / float(height_)};
+    }
+  }
+}
+
 uint64_t Distribution2D::footprint(int width, int height) {
   const uint64_t cdf = (uint64_t(width) + 1) * sizeof(double);
   const uint64_t guide = (GuidedCdf::slots_for(size_t(std::max(width, 0))) + 1) * sizeof(uint32_t);

@@ -28,13 +28,14 @@ class Distribution2D {
 
   // A point in [0,1)^2 and its density with respect to area in [0,1)^2.
   Vec2 sample(Vec2 u, float& pdf) const {
-    float ry = 0, rx = 0;
-    const size_t y = marginal_.sample(u.y, &ry);
-    const GuidedCdf row = row_cdf(y);
-    const size_t x = row.sample(u.x, &rx);
-    pdf = float(double(marginal_.pmf(y)) * row.pmf(x) * double(width_) * height_);
-    return {(float(x) + rx) / float(width_), (float(y) + ry) / float(height_)};
+    Vec2 p;
+    sample(&u, 1, &p, &pdf);
+    return p;
   }
+  // sample() for each of the n draws u[i], into p[i] and pdf[i]. The draws go together, stage by
+  // stage, each stage asking the cache for what the next one reads (a row's guide, then its CDF),
+  // so that on a large map the draws' misses overlap instead of following one another.
+  void sample(const Vec2* u, int n, Vec2* p, float* pdf) const;
 
   float pdf(Vec2 p) const {
     const auto [x, y] = cell(p);

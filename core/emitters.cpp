@@ -165,7 +165,7 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
   top_ = Distribution1D(top_power);
 }
 
-std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u) const {
+std::optional<Emitters::Pick> Emitters::pick_first(float u) const {
   float remapped = 0;
   if (!tree_pays()) {
     if (pick_.size() == 0) return std::nullopt;
@@ -174,10 +174,22 @@ std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n,
   }
   if (top_.size() == 0) return std::nullopt;
   const size_t slot = top_.sample(u, &remapped);
-  if (slot > 0) return Pick{size_t(unbounded_[slot]), top_.pmf(slot), remapped};
-  const std::optional<LightTree::Pick> leaf = tree_.sample(ref, ref_n, remapped);
+  return Pick{slot > 0 ? size_t(unbounded_[slot]) : kDownTheTree, top_.pmf(slot), remapped};
+}
+
+std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u) const {
+  const std::optional<Pick> first = pick_first(u);
+  if (!first || first->index != kDownTheTree) return first;
+  const std::optional<LightTree::Pick> leaf = tree_.sample(ref, ref_n, first->remapped);
   if (!leaf) return std::nullopt;
-  return Pick{size_t(leaf->item), top_.pmf(0) * leaf->pmf, leaf->remapped};
+  return Pick{size_t(leaf->item), first->pmf * leaf->pmf, leaf->remapped};
+}
+
+std::optional<Vec2> Emitters::environment_map_draw(float u_spare, Vec2 u) const {
+  if (environment_index_ < 0 || !environment_.has_map() || !portals_.empty()) return std::nullopt;
+  const std::optional<Pick> first = pick_first(u.x);
+  if (!first || first->index != size_t(environment_index_)) return std::nullopt;
+  return Vec2{point_draw(*first, u_spare), u.y};
 }
 
 float Emitters::pick_probability(int index, const Vec3& ref, const Vec3& ref_n) const {
@@ -213,10 +225,11 @@ int Emitters::triangle_base(int instance, int primitive) const {
 // reuses its draw the same way). Each rescaling leaves log2(1 / share) fewer bits of u.x, so below
 // a share of 2^-8 (16 bits left) the independent u_spare places the point instead: either way the
 // point is uniform given the choice, so the density is the same.
-EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u) const {
+EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
+                               const EnvironmentLight::Sample* sky) const {
   const std::optional<Pick> chosen = pick(ref, ref_n, u.x);
   if (!chosen) return {};
-  u.x = chosen->pmf >= 0x1p-8f ? chosen->remapped : u_spare;
+  u.x = point_draw(*chosen, u_spare);
   const size_t i = chosen->index;
   if (static_cast<int>(i) == environment_index_) {
     EmitterSample s;
@@ -225,7 +238,9 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
     EnvironmentLight::Seen seen;
     float pdf_dir = 0;
     if (portals_.empty()) {
-      s.wi = environment_.sample(u, seen);
+      const EnvironmentLight::Sample drawn = sky ? *sky : environment_.sample(u);
+      s.wi = drawn.wi;
+      seen = drawn.seen;
       pdf_dir = seen.pdf;
     } else {
       // One draw chooses portal or map, then serves the one chosen (one-sample MIS: the density
@@ -242,7 +257,9 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
         seen = environment_.seen(s.wi);
       } else {
         u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
-        s.wi = environment_.sample(u, seen);
+        const EnvironmentLight::Sample drawn = environment_.sample(u);
+        s.wi = drawn.wi;
+        seen = drawn.seen;
         // In the mixture the map's density is w's own, even where sample() gave the draw none.
         if (!(seen.pdf > 0)) seen.pdf = environment_.pdf(s.wi);
       }

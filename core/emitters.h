@@ -53,7 +53,14 @@ class Emitters {
   // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
   // (zero: none); pdf 0 when nothing can be sampled. u chooses the emitter and the point on it;
   // u_spare stands in for u.x where the emitter's share of u.x is too narrow to place the point.
-  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u) const;
+  // sky: environment_.sample(*environment_map_draw(u_spare, u)) when the caller drew it already
+  // (a batch of draws at once), else null.
+  EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
+                       const EnvironmentLight::Sample* sky = nullptr) const;
+  // Where the draw (u_spare, u) chooses a map's sky, and the sky has no portals, the draw it hands
+  // the map: a light is chosen before the shading point is known only there (lights at infinity
+  // are chosen by power). So a packet's sky samples can be drawn together, ahead of shading.
+  std::optional<Vec2> environment_map_draw(float u_spare, Vec2 u) const;
   // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
   float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const;
 
@@ -107,6 +114,15 @@ class Emitters {
   };
   void build_tree(const SceneDesc& desc, const std::vector<double>& power);
   std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u) const;
+  // The step of pick() that does not depend on the shading point: by power among all lights, or
+  // between the tree (index kDownTheTree, to go on with `remapped`) and each light at infinity.
+  static constexpr size_t kDownTheTree = ~size_t(0);
+  std::optional<Pick> pick_first(float u) const;
+  // The draw that places the point on the light chosen by `chosen`: u.x rescaled within the
+  // light's share, or u_spare where that share is too narrow (see sample()).
+  static float point_draw(const Pick& chosen, float u_spare) {
+    return chosen.pmf >= 0x1p-8f ? chosen.remapped : u_spare;
+  }
 
   const SceneDesc* desc_ = nullptr;
   LightSampling how_ = LightSampling::Tree;

@@ -94,22 +94,31 @@ Vec2 EnvironmentLight::prefetch(const Vec3& w) const {
   return uv;
 }
 
-Vec3 EnvironmentLight::sample(Vec2 u, Seen& seen) const {
+void EnvironmentLight::sample(const Vec2* u, int n, Sample* out) const {
   if (!image_) {
-    seen = {scale_, kInvFourPi};
-    return sample_uniform_sphere(u);
+    for (int i = 0; i < n; ++i) out[i] = {sample_uniform_sphere(u[i]), {scale_, kInvFourPi}};
+    return;
   }
-  float pdf_uv = 0;
-  const Vec2 uv = distribution_.sample(u, pdf_uv);
-  // This texel's radiance is read below: start the fetch from a large map's memory now.
-  const auto [x, y] = texel_at(*image_, uv);
-  image_->prefetch(x, y);
-  const Vec3 w = uv_to_direction(uv);
-  // Radiance and density are looked up from the direction, as for any other direction: a sample
-  // on a texel edge may round into the neighbour, and both must agree on which texel that is.
-  seen = this->seen(w);
-  if (!(pdf_uv > 0)) seen.pdf = 0;
-  return w;
+  constexpr int kBatch = 8;
+  for (int first = 0; first < n; first += kBatch) {
+    const int m = std::min(n - first, kBatch);
+    Vec2 uv[kBatch];
+    float pdf_uv[kBatch];
+    distribution_.sample(u + first, m, uv, pdf_uv);
+    // Radiance and density are looked up from the direction, as for any other direction: a sample
+    // on a texel edge may round into the neighbour, and both must agree on which texel that is.
+    // Every draw's texel is asked for before the first is read.
+    Vec2 seen_uv[kBatch];
+    for (int i = 0; i < m; ++i) {
+      out[first + i].wi = uv_to_direction(uv[i]);
+      seen_uv[i] = prefetch(out[first + i].wi);
+    }
+    for (int i = 0; i < m; ++i) {
+      Seen& seen = out[first + i].seen;
+      seen = seen_at(seen_uv[i]);
+      if (!(pdf_uv[i] > 0)) seen.pdf = 0;
+    }
+  }
 }
 
 float EnvironmentLight::pdf(const Vec3& w) const {

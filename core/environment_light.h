@@ -33,7 +33,18 @@ class EnvironmentLight {
   // The map's radiance at uv (has_map() only).
   Rgb map_radiance(Vec2 uv) const;
   // A direction toward the sky, and what is seen along it.
-  Vec3 sample(Vec2 u, Seen& seen) const;
+  struct Sample {
+    Vec3 wi;
+    Seen seen;
+  };
+  Sample sample(Vec2 u) const {
+    Sample s;
+    sample(&u, 1, &s);
+    return s;
+  }
+  // sample() for each of the n draws u[i], into out[i]: a map's draws go together, stage by stage,
+  // so that their cache misses on its density and texels overlap (Distribution2D::sample).
+  void sample(const Vec2* u, int n, Sample* out) const;
   float pdf(const Vec3& w) const;
   // Mean radiance luminance over the sphere, for choosing among lights.
   double mean_luminance() const { return mean_luminance_; }

@@ -65,6 +65,14 @@ struct PathIntegrator::Bounce {
   }
 };
 
+// Where a lane's ray arrived, with what li_packet worked out for all lanes before any shades.
+struct PathIntegrator::Arrival {
+  const SurfaceHit* hit = nullptr;  // null: the ray escaped
+  const Vec2* sky_uv = nullptr;     // escaped to a map's sky: where it meets the map (EnvironmentLight::prefetch)
+  const VertexSamples* draws = nullptr;  // the vertex's draws, where the path scatters (scatters_next)
+  const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
+};
+
 // Aiming is for surfaces with a non-delta lobe that only reflect: a transmitting one would need its
 // crossing (media, eta) worked out for a direction it did not sample.
 void PathIntegrator::choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& b) const {
@@ -84,11 +92,12 @@ void PathIntegrator::choose_bounce(const Scene& scene, const SurfaceHit& hit, co
 // the light is visible is left to the shadow ray.
 PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf,
                                                          const Bounce& bounce, const MediumStack& media,
-                                                         const MaterialDesc& material, bool from_front, float u_spare,
-                                                         Vec2 u_point) const {
+                                                         const MaterialDesc& material, bool from_front,
+                                                         const VertexSamples& u,
+                                                         const EnvironmentLight::Sample* sky) const {
   const SceneDesc& desc = scene.desc();
   ShadowQuery q;
-  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u_spare, u_point);
+  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u.light_spare, u.light_point, sky);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -122,16 +131,22 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
+bool PathIntegrator::scatters_next(const Path& path) const {
+  return path.depth < max_depth_ && !path.last_vertex;
+}
+
 // Each vertex that scatters draws, in order: the light sample's spare (1D), the light and the
 // point on it (2D), BSDF lobe (1D) and direction (2D), and the Russian-roulette decision (1D), all
 // five whether or not it uses them (no light sampling at delta surfaces, no roulette before its
 // start depth): a dimension then means the same decision in every sample of a pixel, and stays
-// stratified across them (pbrt-v4 does the same).
-bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* found, const Vec2* sky_uv,
-                             ShadowQuery& shadow, RayCounters& counters) const {
+// stratified across them (pbrt-v4 does the same). li_packet draws them (at.draws) before the lanes
+// shade.
+bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
+                             RayCounters& counters) const {
+  const SurfaceHit* found = at.hit;
+  const Vec2* sky_uv = at.sky_uv;
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
-  Sampler& sampler = *path.sampler;
   const int depth = path.depth;
   Rgb& beta = path.beta;
   shadow.cast = false;
@@ -182,7 +197,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
   }
   const MaterialDesc& material = desc.material(hit.material);
   const bool from_front = dot(wo, hit.ng) > 0;
-  if (depth >= max_depth_ || path.last_vertex) {
+  if (!scatters_next(path)) {
     // No more scattering, but a straight crossing is none: next-event estimation at the last
     // vertex counted light beyond sheets, so the path must still reach it for its MIS half.
     if (!material.is_thin_sheet() || path.crossings >= kMaxSheetCrossings) return false;
@@ -196,7 +211,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
     return true;
   }
 
-  const VertexSamples u = sampler.next_vertex();
+  const VertexSamples& u = *at.draws;
   const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
 
   Bounce bounce;
@@ -204,7 +219,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const SurfaceHit* f
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u.light_spare, u.light_point);
+    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light);
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;
@@ -337,7 +352,8 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     // Every lane's texels (of its hit's textures, or of the sky map it escaped to) are asked for
     // before the first lane shades: their cache misses, which each lane would otherwise wait out
     // in turn, overlap.
-    const EnvironmentLight& sky = scene.emitters().environment();
+    const Emitters& emitters = scene.emitters();
+    const EnvironmentLight& sky = emitters.environment();
     Vec2 sky_uv[kLanes];
     if (scene.features().textures || sky.has_map())
       for (int i = 0; i < m; ++i) {
@@ -346,12 +362,41 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         else if (scene.features().textures)
           prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv);
       }
+    // The vertices' draws, which do not depend on what a lane finds there, come first too: where
+    // they choose a map's sky for the light sample, the lanes' sky samples are drawn together.
+    VertexSamples draws[kLanes];
+    Vec2 sky_draw[kLanes];
+    int sky_draw_lane[kLanes];
+    int sky_draws = 0;
+    for (int i = 0; i < m; ++i) {
+      Path& path = paths[live[i]];
+      if (!found[i] || !scatters_next(path)) continue;
+      draws[i] = path.sampler->next_vertex();
+      if (!sky.has_map()) continue;
+      if (const std::optional<Vec2> d = emitters.environment_map_draw(draws[i].light_spare, draws[i].light_point)) {
+        sky_draw[sky_draws] = *d;
+        sky_draw_lane[sky_draws++] = i;
+      }
+    }
+    EnvironmentLight::Sample sky_samples[kLanes];
+    const EnvironmentLight::Sample* sky_light[kLanes] = {};
+    if (sky_draws > 0) {
+      sky.sample(sky_draw, sky_draws, sky_samples);
+      for (int j = 0; j < sky_draws; ++j) sky_light[sky_draw_lane[j]] = &sky_samples[j];
+    }
 
     int s = 0, still = 0;
     for (int i = 0; i < m; ++i) {
       const int k = live[i];
-      const bool goes_on = advance(scene, paths[k], found[i] ? &hits[i] : nullptr,
-                                   !found[i] && sky.has_map() ? &sky_uv[i] : nullptr, shadows[i], counters);
+      Arrival at;
+      if (found[i]) {
+        at.hit = &hits[i];
+        at.draws = &draws[i];
+        at.sky_light = sky_light[i];
+      } else if (sky.has_map()) {
+        at.sky_uv = &sky_uv[i];
+      }
+      const bool goes_on = advance(scene, paths[k], at, shadows[i], counters);
       if (shadows[i].cast) {
         shadow_rays[s] = shadows[i].ray;
         shadow_iors[s] = shadows[i].medium_ior;

@@ -35,18 +35,20 @@ class PathIntegrator final : public Integrator {
   struct Path;
   struct ShadowQuery;
   struct Bounce;
+  struct Arrival;
 
-  // One bounce of a path at the surface its ray found (or the sky): gathers emission, queues
+  // Whether a path scatters at the surface its ray finds (or only gathers its emission there).
+  bool scatters_next(const Path& path) const;
+  // One bounce of a path where its ray arrived (a surface or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
-  // the path ends here. sky_uv: where an escaped ray meets the sky's map, when the caller mapped
-  // it already (EnvironmentLight::prefetch); null to map it here.
-  bool advance(const Scene& scene, Path& path, const SurfaceHit* hit, const Vec2* sky_uv, ShadowQuery& shadow,
-               RayCounters& counters) const;
+  // the path ends here.
+  bool advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
+  // sky: the light sample's sky direction when the caller drew it (Emitters::sample).
   ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,
-                           const MediumStack& media, const MaterialDesc& material, bool from_front, float u_spare,
-                           Vec2 u_point) const;
+                           const MediumStack& media, const MaterialDesc& material, bool from_front,
+                           const VertexSamples& u, const EnvironmentLight::Sample* sky) const;
   // How the vertex at `hit` draws its next direction: from the BSDF alone, or also aimed at casters.
   // Fills `out` in place (a view of the casters is a few hundred bytes, made at every vertex).
   void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;

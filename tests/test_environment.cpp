@@ -6,7 +6,9 @@
 
 #include "chi_square.h"
 #include "core/constants.h"
+#include "core/emitters.h"
 #include "core/environment_light.h"
+#include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 #include "integrators/path_integrator.h"
@@ -98,8 +100,7 @@ TEST(Environment, MapSamplingMatchesItsPdf) {
     const EnvironmentLight env(desc);
     const std::string why = test::chi_square_sphere(
         [&](float, Vec2 u) -> std::optional<test::DirectionSample> {
-          EnvironmentLight::Seen seen;
-          const Vec3 w = env.sample(u, seen);
+          const auto [w, seen] = env.sample(u);
           // One mapping of w serves both: they agree with the separate lookups.
           EXPECT_EQ(seen.pdf, env.pdf(w));
           EXPECT_EQ(seen.radiance, env.radiance(w));
@@ -108,6 +109,68 @@ TEST(Environment, MapSamplingMatchesItsPdf) {
         },
         [&](const Vec3& w) { return env.pdf(w); });
     EXPECT_EQ(why, "") << rotation;
+  }
+}
+
+// A batch of draws (staged, several draws' lookups at a time) gives each draw exactly what it
+// gives alone, for batches longer than one stage and not a multiple of it.
+TEST(Environment, BatchedDrawsMatchSingleDraws) {
+  SceneDesc desc = with_environment(SceneDesc{}, Rgb(1.0f, 0.5f, 2.0f), true, 0.3f);
+  const EnvironmentLight env(desc);
+  Pcg32 rng(11, 12);
+  std::vector<Vec2> u(21);
+  for (Vec2& d : u) d = {rng.next_float(), rng.next_float()};
+  u[0] = {0.0f, 0.0f};
+  u[1] = {0x1.fffffep-1f, 0x1.fffffep-1f};
+  std::vector<EnvironmentLight::Sample> batch(u.size());
+  env.sample(u.data(), int(u.size()), batch.data());
+  for (size_t i = 0; i < u.size(); ++i) {
+    const EnvironmentLight::Sample one = env.sample(u[i]);
+    EXPECT_EQ(batch[i].wi, one.wi) << i;
+    EXPECT_EQ(batch[i].seen.radiance, one.seen.radiance) << i;
+    EXPECT_EQ(batch[i].seen.pdf, one.seen.pdf) << i;
+  }
+}
+
+// Light samples of a map's sky can be drawn ahead of the vertex (PathIntegrator::li_packet draws a
+// packet's together): environment_map_draw says so for exactly the draws that choose the sky, and
+// the sample drawn from what it hands the map is the one Emitters::sample draws itself. Under both
+// light samplers, with area and punctual lights beside the sky.
+TEST(Environment, LightSamplesDrawnAheadAreTheVertexsOwn) {
+  SceneDesc desc = with_environment(SceneDesc{}, Rgb(1.0f, 0.5f, 2.0f), true, 0.3f);
+  const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(3.0f));
+  for (int q = 0; q < 6; ++q)
+    test::add_quad(desc, Vec3(float(q) - 3, 2, 0), Vec3(0.3f, 0, 0), Vec3(0, 0, 0.3f), lamp);
+  PunctualLightDesc point;
+  point.type = LightType::Point;
+  point.position = Vec3(0, 3, 1);
+  point.intensity = Rgb(20.0f);
+  desc.lights.push_back(point);
+  for (LightSampling how : {LightSampling::Tree, LightSampling::Power}) {
+    const Emitters emitters(desc, how);
+    Pcg32 rng(13, 14);
+    int sky = 0, other = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec3 ref(4 * rng.next_float() - 2, 0, 4 * rng.next_float() - 2);
+      const float u_spare = rng.next_float();
+      const Vec2 u{rng.next_float(), rng.next_float()};
+      const EmitterSample at_vertex = emitters.sample(ref, Vec3(0, 1, 0), u_spare, u);
+      const std::optional<Vec2> ahead = emitters.environment_map_draw(u_spare, u);
+      ASSERT_EQ(ahead.has_value(), at_vertex.infinite) << i;
+      if (!ahead) {
+        ++other;
+        continue;
+      }
+      ++sky;
+      const EnvironmentLight::Sample drawn = emitters.environment().sample(*ahead);
+      const EmitterSample given = emitters.sample(ref, Vec3(0, 1, 0), u_spare, u, &drawn);
+      EXPECT_EQ(given.wi, at_vertex.wi) << i;
+      EXPECT_EQ(given.pdf, at_vertex.pdf) << i;
+      EXPECT_EQ(given.incident, at_vertex.incident) << i;
+    }
+    // Both kinds of light are drawn often enough for the check to mean something.
+    EXPECT_GT(sky, 400);
+    EXPECT_GT(other, 400);
   }
 }
 

@@ -26,27 +26,34 @@ inline float rescale_to_unit(float u, double start, double width) {
 // so that the table adds an eighth to the CDF's memory and the search takes two or three steps.
 // Below 16 items there is no guide (slots 0): the search over the whole CDF is as short, and
 // reading a guide cost a light pick among a few lights 7 ns in 37.
+// Entry is double or float. In floats, an item whose weight is below the float spacing of the CDF
+// around it gets an interval of width 0: it is never drawn and its pmf is 0, consistently, so an
+// estimator that weighs the draws by pmf (or MIS with another strategy) stays unbiased.
+template <typename Entry>
 struct GuidedCdf {
-  const double* cdf = nullptr;      // items + 1 entries, from 0 to 1
+  const Entry* cdf = nullptr;       // items + 1 entries, from 0 to 1
   const uint32_t* guide = nullptr;  // slots + 1 entries
   size_t items = 0, slots = 0;
 
   static size_t slots_for(size_t items) { return items < 16 ? 0 : std::bit_floor(items) / 4; }
   // Writes the items + 1 entries of cdf from the weights (negative and non-finite ones count as
-  // zero) and returns their total; when that is 0 nothing is normalised and there is nothing to sample.
-  static double build_cdf(const double* weights, size_t items, double* cdf) {
-    cdf[0] = 0.0;
-    for (size_t i = 0; i < items; ++i) {
-      const double w = weights[i] > 0 && weights[i] < 1e300 ? weights[i] : 0.0;
-      cdf[i + 1] = cdf[i] + w;
-    }
-    const double total = cdf[items];
+  // zero) and returns their total; when that is 0 nothing is written and there is nothing to sample.
+  // The running sums are in doubles whatever Entry is; each is divided by the total once.
+  static double build_cdf(const double* weights, size_t items, Entry* cdf) {
+    const auto weight = [&](size_t i) { return weights[i] > 0 && weights[i] < 1e300 ? weights[i] : 0.0; };
+    double total = 0;
+    for (size_t i = 0; i < items; ++i) total += weight(i);
     if (!(total > 0)) return 0;
-    for (size_t i = 0; i <= items; ++i) cdf[i] /= total;
-    cdf[items] = 1.0;
+    double running = 0;
+    cdf[0] = 0;
+    for (size_t i = 0; i < items; ++i) {
+      running += weight(i);
+      cdf[i + 1] = static_cast<Entry>(running / total);
+    }
+    cdf[items] = 1;
     return total;
   }
-  static void build_guide(const double* cdf, size_t items, uint32_t* guide, size_t slots) {
+  static void build_guide(const Entry* cdf, size_t items, uint32_t* guide, size_t slots) {
     if (slots == 0) return;
     size_t i = 0;
     for (size_t g = 0; g <= slots; ++g) {
@@ -56,7 +63,7 @@ struct GuidedCdf {
     }
   }
 
-  float pmf(size_t i) const { return i < items ? static_cast<float>(cdf[i + 1] - cdf[i]) : 0.0f; }
+  float pmf(size_t i) const { return i < items ? static_cast<float>(double(cdf[i + 1]) - double(cdf[i])) : 0.0f; }
 
   // The CDF entries [first, first + len) the search for u stays within: between the guide's two
   // entries around u, or the whole CDF without a guide.
@@ -78,14 +85,14 @@ struct GuidedCdf {
   // within the item's interval so one sample dimension can be reused.
   size_t search(Bracket b, float u, float* remapped) const {
     const double x = u;
-    const double* base = cdf + b.first;
+    const Entry* base = cdf + b.first;
     for (size_t len = b.len; len > 1;) {
       const size_t half = len / 2;
       base = base[half] <= x ? base + half : base;
       len -= half;
     }
     const size_t i = std::min(static_cast<size_t>(base - cdf), items - 1);
-    if (remapped) *remapped = rescale_to_unit(u, cdf[i], cdf[i + 1] - cdf[i]);
+    if (remapped) *remapped = rescale_to_unit(u, cdf[i], double(cdf[i + 1]) - double(cdf[i]));
     return i;
   }
   size_t sample(float u, float* remapped) const { return search(bracket(u), u, remapped); }
@@ -98,14 +105,14 @@ class Distribution1D {
   // distribution is empty (size() == 0 after construction means nothing to sample).
   explicit Distribution1D(const std::vector<double>& weights) {
     cdf_.resize(weights.size() + 1);
-    total_ = GuidedCdf::build_cdf(weights.data(), weights.size(), cdf_.data());
+    total_ = GuidedCdf<double>::build_cdf(weights.data(), weights.size(), cdf_.data());
     if (!(total_ > 0)) {
       cdf_.clear();
       return;
     }
-    if (const size_t slots = GuidedCdf::slots_for(weights.size()); slots > 0) {
+    if (const size_t slots = GuidedCdf<double>::slots_for(weights.size()); slots > 0) {
       guide_.resize(slots + 1);
-      GuidedCdf::build_guide(cdf_.data(), weights.size(), guide_.data(), slots);
+      GuidedCdf<double>::build_guide(cdf_.data(), weights.size(), guide_.data(), slots);
     }
   }
 
@@ -121,7 +128,7 @@ class Distribution1D {
   size_t sample(float u, float* remapped = nullptr) const { return view().sample(u, remapped); }
 
  private:
-  GuidedCdf view() const { return {cdf_.data(), guide_.data(), size(), guide_.empty() ? 0 : guide_.size() - 1}; }
+  GuidedCdf<double> view() const { return {cdf_.data(), guide_.data(), size(), guide_.empty() ? 0 : guide_.size() - 1}; }
 
   std::vector<double> cdf_;
   std::vector<uint32_t> guide_;

@@ -30,7 +30,7 @@ EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
   if (env.image >= 0 && env.image < static_cast<int>(desc.images.size())) {
     image_ = &desc.images[env.image];
     const int w = image_->width, h = image_->height;
-    // The map is in memory already; its distribution comes on top (a double per texel).
+    // The map is in memory already; its distribution comes on top (a float per texel).
     require_memory(image_->memory_bytes() + Distribution2D::footprint(w, h),
                    image_->name + ": the environment map with its sampling distribution");
     // Texels weighted by luminance and by the solid angle of their row (sin theta).

@@ -65,14 +65,14 @@ TEST(MemoryLimit, AnEnvironmentMapsDistributionPastTheLimitIsRefused) {
     img.texels.assign(size_t(width) * height, 1.0f);
     return desc;
   };
-  const SceneDesc small = sky(512, 256), large = sky(2048, 1024);  // 8 MiB of texels, 18 MiB more to sample them
+  const SceneDesc small = sky(512, 256), large = sky(2048, 1024);  // 8 MiB of texels, 10 MiB more to sample them
   EXPECT_NO_THROW(EnvironmentLight{small});
   try {
     const EnvironmentLight env(large);
     FAIL() << "expected a MemoryLimitError";
   } catch (const MemoryLimitError& e) {
     EXPECT_STREQ(e.what(),
-                 "sky.exr: the environment map with its sampling distribution needs about 26 MiB, more than the memory "
+                 "sky.exr: the environment map with its sampling distribution needs about 18 MiB, more than the memory "
                  "limit of 16 MiB (--memory-limit)");
   }
 }

@@ -253,6 +253,50 @@ TEST(Distribution1D, SampleInvertsTheCdfExactly) {
   }
 }
 
+// The same for a CDF in floats (an environment map's rows, Distribution2D): the search agrees with
+// a search over the float entries, and an item too light for the floats near it to tell apart
+// gets an interval of width 0: never drawn, and its pmf 0, so the two stay consistent.
+TEST(Distribution1D, FloatCdfInvertsExactlyAndSkipsWhatItCannotResolve) {
+  Pcg32 rng(9, 10);
+  std::vector<std::vector<double>> cases = {{1e9, 1, 1e9}, {3, 0, 1e-12, 5}};
+  for (size_t n : {2u, 17u, 64u, 100u, 2049u}) {
+    std::vector<double> w(n);
+    for (double& x : w) x = rng.next_float() < 0.3f ? 0.0 : rng.next_float();
+    w[n / 3] = 1e9;  // a sun: the other items' intervals shrink to a few float spacings or none
+    cases.push_back(w);
+  }
+  for (const std::vector<double>& w : cases) {
+    using Cdf = GuidedCdf<float>;
+    std::vector<float> cdf(w.size() + 1);
+    ASSERT_GT(Cdf::build_cdf(w.data(), w.size(), cdf.data()), 0.0);
+    const size_t slots = Cdf::slots_for(w.size());
+    std::vector<uint32_t> guide(slots + 1);
+    Cdf::build_guide(cdf.data(), w.size(), guide.data(), slots);
+    const Cdf d{cdf.data(), guide.data(), w.size(), slots};
+    ASSERT_TRUE(std::is_sorted(cdf.begin(), cdf.end()));
+    ASSERT_EQ(cdf.back(), 1.0f);
+    std::vector<float> draws = {0.0f, 0.5f, kOneMinusEpsilon};
+    for (float c : cdf)
+      for (float v : {c, std::nextafter(c, 0.0f), std::nextafter(c, 1.0f)})
+        if (v >= 0 && v < 1) draws.push_back(v);
+    for (int k = 0; k < 1000; ++k) draws.push_back(rng.next_float());
+    for (float u : draws) {
+      const size_t expected =
+          std::min(size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1, w.size() - 1);
+      float remapped = -1;
+      ASSERT_EQ(d.sample(u, &remapped), expected) << "n " << w.size() << " u " << u;
+      ASSERT_GT(d.pmf(expected), 0.0f);
+      ASSERT_GE(remapped, 0.0f);
+      ASSERT_LT(remapped, 1.0f);
+    }
+  }
+  // 1 against 2e9: below float resolution around 0.5, so width 0, in the CDF and in the pmf.
+  const std::vector<double> w = {1e9, 1, 1e9};
+  std::vector<float> cdf(4);
+  GuidedCdf<float>::build_cdf(w.data(), 3, cdf.data());
+  EXPECT_EQ((GuidedCdf<float>{cdf.data(), nullptr, 3, 0}.pmf(1)), 0.0f);
+}
+
 TEST(Distribution1D, AllZeroIsEmpty) {
   Distribution1D d(std::vector<double>{0, 0, -1, std::nan("")});
   EXPECT_EQ(d.size(), 0u);

@@ -1,7 +1,8 @@
-// ImageDesc: a decoded image's texels, kept as floats or, for 8-bit sources, as their bytes.
+// ImageDesc: a decoded image's texels, kept as floats or as the 8-bit codes or half floats they came in.
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -24,26 +25,49 @@ float srgb_to_linear(float v);
 extern const std::array<float, 256> kSrgbCodes;
 extern const std::array<float, 256> kLinearCodes;
 
+// The float an IEEE 754 binary16 value stands for (every half is exactly a float), NaN payloads
+// kept. Subnormals are scaled from an integer, so the result does not depend on whether the CPU
+// flushes float subnormals.
+inline float half_to_float(uint16_t h) {
+  const uint32_t sign = uint32_t(h & 0x8000u) << 16;
+  const uint32_t magnitude = h & 0x7fffu;  // exponent and mantissa
+  uint32_t bits;
+  if (magnitude >= 0x7c00u)  // infinity or NaN
+    bits = 0x7f800000u | ((magnitude & 0x3ffu) << 13);
+  else if (magnitude >= 0x0400u)  // normal: the exponent rebiased from 15 to 127
+    bits = (magnitude << 13) + (uint32_t(127 - 15) << 23);
+  else  // zero or subnormal: mantissa x 2^-24
+    bits = std::bit_cast<uint32_t>(float(magnitude) * 0x1p-24f);
+  return std::bit_cast<float>(bits | sign);
+}
+
 // Texels with row 0 at the top (as images are stored), `channels` per texel (1: grey, 2: grey and
 // alpha, 3: RGB, 4: RGBA). 8-bit sources keep their bytes, decoded when read: a quarter of the
 // memory of floats, and four times the texels per cache line, which is what a texture lookup
-// waits on. Everything else (float, half, 16-bit) is held as linear floats.
+// waits on. Half-float sources (most EXR environment maps) keep their halves: half the memory of
+// floats, exactly the same values. Everything else (float, 16-bit) is held as linear floats.
 struct ImageDesc {
   std::string name;
   int width = 0, height = 0, channels = 0;
-  std::vector<float> texels;   // linear, when the image is not held as bytes
-  std::vector<uint8_t> bytes;  // the 8-bit codes as stored in the file, when held as bytes
-  bool srgb = false;           // the bytes' colour channels are sRGB-encoded (alpha never is)
+  std::vector<float> texels;     // linear, when the image is held as floats
+  std::vector<uint8_t> bytes;    // the 8-bit codes as stored in the file, when held as bytes
+  std::vector<uint16_t> halves;  // linear half floats as stored in the file, when held as halves
+  bool srgb = false;             // the bytes' colour channels are sRGB-encoded (alpha never is)
 
   bool holds_bytes() const { return !bytes.empty(); }
+  bool holds_halves() const { return !halves.empty(); }
   size_t texel_count() const { return size_t(width) * size_t(height); }
-  size_t memory_bytes() const { return texels.size() * sizeof(float) + bytes.size(); }
+  size_t memory_bytes() const {
+    return texels.size() * sizeof(float) + bytes.size() + halves.size() * sizeof(uint16_t);
+  }
 
   // Starts fetching the texel at column x, row y into the cache.
   void prefetch(int x, int y) const {
     const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);
     if (!bytes.empty())
       __builtin_prefetch(&bytes[i]);
+    else if (!halves.empty())
+      __builtin_prefetch(&halves[i]);
     else
       __builtin_prefetch(&texels[i]);
   }
@@ -59,6 +83,15 @@ struct ImageDesc {
         case 2: return {Rgb(colour[b[0]]), kLinearCodes[b[1]]};
         case 3: return {Rgb(colour[b[0]], colour[b[1]], colour[b[2]]), 1.0f};
         default: return {Rgb(colour[b[0]], colour[b[1]], colour[b[2]]), kLinearCodes[b[3]]};
+      }
+    }
+    if (!halves.empty()) {
+      const uint16_t* h = &halves[i];
+      switch (channels) {
+        case 1: return {Rgb(half_to_float(h[0])), 1.0f};
+        case 2: return {Rgb(half_to_float(h[0])), half_to_float(h[1])};
+        case 3: return {Rgb(half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2])), 1.0f};
+        default: return {Rgb(half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2])), half_to_float(h[3])};
       }
     }
     const float* t = &texels[i];

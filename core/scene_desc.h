@@ -143,7 +143,7 @@ struct PunctualLightDesc {
 struct EnvironmentDesc {
   bool present = false;
   Rgb color{1, 1, 1};    // radiance in nits, or the map's multiplier
-  int image = -1;        // index into SceneDesc::images (linear floats: read_image_file), or -1 for a constant colour
+  int image = -1;        // index into SceneDesc::images (read_image_file, kept compact), or -1 for a constant colour
   float rotation = 0;    // radians about +Y, counter-clockwise seen from above
   std::string source;    // the map's file, for messages and metadata
 };

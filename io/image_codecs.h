@@ -12,20 +12,23 @@ namespace prism {
 // of dynamic loading, although most renders read no image and write no PNG.
 class ImageCodecs {
  public:
+  // How samples are read: as floats (any image), or as their own 8-bit codes or half floats
+  // (only images whose every channel is stored so: the read is then exact).
+  enum class Samples { Float, Uint8, Half };
   struct Info {
     int width = 0, height = 0, channels = 0;
     bool is_float = false;  // FLOAT, HALF or DOUBLE samples: linear data, not sRGB-encoded
-    bool is_8bit = false;   // UINT8 samples: read_bytes() gives them exactly
+    bool is_8bit = false;   // every channel UINT8: Samples::Uint8 reads them exactly
+    bool is_half = false;   // every channel HALF: Samples::Half reads them exactly
   };
   // An opened image whose header is read; read() decodes its first `channels` channels.
   class Input {
    public:
     virtual ~Input() = default;
     virtual Info info() const = 0;
-    // Fills width x height x channels floats; false with `error` set when the data is bad.
-    virtual bool read(int channels, float* texels, std::string& error) = 0;
-    // Fills width x height x channels 8-bit codes, as stored (for is_8bit images).
-    virtual bool read_bytes(int channels, unsigned char* texels, std::string& error) = 0;
+    // Fills width x height x channels samples of the given kind (4, 1 or 2 bytes each); false with
+    // `error` set when the data is bad.
+    virtual bool read(int channels, Samples kind, void* texels, std::string& error) = 0;
   };
 
   virtual ~ImageCodecs() = default;
@@ -44,4 +47,4 @@ const ImageCodecs& image_codecs();
 }  // namespace prism
 
 // The module's one export: its codecs, which live as long as the process.
-extern "C" const prism::ImageCodecs* prism_image_codecs_v2();
+extern "C" const prism::ImageCodecs* prism_image_codecs_v3();

@@ -16,19 +16,28 @@ class OiioInput final : public ImageCodecs::Input {
   ImageCodecs::Info info() const override {
     const OIIO::ImageSpec& spec = in_->spec();
     const auto base = spec.format.basetype;
-    return {spec.width, spec.height, spec.nchannels,
-            base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE,
-            base == OIIO::TypeDesc::UINT8};
+    // Files whose channels differ in type (an EXR with half colour and float depth) list them.
+    const auto every_channel = [&](OIIO::TypeDesc::BASETYPE type) {
+      if (base != type) return false;
+      for (const OIIO::TypeDesc& t : spec.channelformats)
+        if (t.basetype != type) return false;
+      return true;
+    };
+    ImageCodecs::Info info;
+    info.width = spec.width;
+    info.height = spec.height;
+    info.channels = spec.nchannels;
+    info.is_float = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
+    info.is_8bit = every_channel(OIIO::TypeDesc::UINT8);
+    info.is_half = every_channel(OIIO::TypeDesc::HALF);
+    return info;
   }
 
-  bool read(int channels, float* texels, std::string& error) override {
-    if (in_->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, texels)) return true;
-    error = in_->geterror();
-    return false;
-  }
-
-  bool read_bytes(int channels, unsigned char* texels, std::string& error) override {
-    if (in_->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, texels)) return true;
+  bool read(int channels, ImageCodecs::Samples kind, void* texels, std::string& error) override {
+    const OIIO::TypeDesc type = kind == ImageCodecs::Samples::Uint8  ? OIIO::TypeDesc::UINT8
+                                : kind == ImageCodecs::Samples::Half ? OIIO::TypeDesc::HALF
+                                                                     : OIIO::TypeDesc::FLOAT;
+    if (in_->read_image(0, 0, 0, channels, type, texels)) return true;
     error = in_->geterror();
     return false;
   }
@@ -78,7 +87,7 @@ class OiioCodecs final : public ImageCodecs {
 }  // namespace
 }  // namespace prism
 
-extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v2() {
+extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v3() {
   static const prism::OiioCodecs codecs;
   return &codecs;
 }

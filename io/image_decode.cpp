@@ -23,24 +23,35 @@ ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, TexelStorage stora
       uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexels)
     throw InputError(file, element, "image has an unusable size " + std::to_string(spec.width) + "x" +
                                         std::to_string(spec.height) + "x" + std::to_string(spec.channels));
+  if (space == ColorSpace::Auto) space = spec.is_float ? ColorSpace::Linear : ColorSpace::Srgb;
+  // Compact storage keeps 8-bit codes as they are, and linear halves (halves to be sRGB-decoded
+  // would change value: they become floats).
   const bool as_bytes = storage == TexelStorage::Compact && spec.is_8bit;
+  const bool as_halves = storage == TexelStorage::Compact && spec.is_half && space == ColorSpace::Linear;
   const uint64_t values = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(std::min(spec.channels, 4));
-  require_memory(values * (as_bytes ? 1 : sizeof(float)), element.empty() ? file : file + ": " + element);
+  require_memory(values * (as_bytes ? 1 : as_halves ? sizeof(uint16_t) : sizeof(float)),
+                 element.empty() ? file : file + ": " + element);
   ImageDesc img;
   img.width = spec.width;
   img.height = spec.height;
   img.channels = std::min(spec.channels, 4);
-  if (space == ColorSpace::Auto) space = spec.is_float ? ColorSpace::Linear : ColorSpace::Srgb;
   std::string error;
+  const auto read = [&](ImageCodecs::Samples kind, void* texels) {
+    if (!in.read(img.channels, kind, texels, error)) throw InputError(file, element, "cannot decode image: " + error);
+  };
   if (as_bytes) {
     resize_on_huge_pages(img.bytes, size_t(values));
-    if (!in.read_bytes(img.channels, img.bytes.data(), error))
-      throw InputError(file, element, "cannot decode image: " + error);
+    read(ImageCodecs::Samples::Uint8, img.bytes.data());
     img.srgb = space == ColorSpace::Srgb;
     return img;
   }
+  if (as_halves) {
+    resize_on_huge_pages(img.halves, size_t(values));
+    read(ImageCodecs::Samples::Half, img.halves.data());
+    return img;
+  }
   resize_on_huge_pages(img.texels, size_t(values));
-  if (!in.read(img.channels, img.texels.data(), error)) throw InputError(file, element, "cannot decode image: " + error);
+  read(ImageCodecs::Samples::Float, img.texels.data());
   if (space == ColorSpace::Srgb) {
     // Alpha is linear coverage: in 2- and 4-channel images the last channel is left as is.
     const int colour = (img.channels == 2 || img.channels == 4) ? img.channels - 1 : img.channels;
@@ -61,11 +72,11 @@ ImageDesc decode_image(const unsigned char* data, size_t size, ColorSpace space,
   return read_from(*in, space, storage, file, element);
 }
 
-ImageDesc read_image_file(const std::string& path, ColorSpace space) {
+ImageDesc read_image_file(const std::string& path, ColorSpace space, TexelStorage storage) {
   std::string error;
   const std::unique_ptr<ImageCodecs::Input> in = image_codecs().open_file(path, error);
   if (!in) throw InputError(path, "", "cannot read image: " + error);
-  ImageDesc img = read_from(*in, space, TexelStorage::Float, path, "");
+  ImageDesc img = read_from(*in, space, storage, path, "");
   img.name = path;
   return img;
 }

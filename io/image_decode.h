@@ -1,4 +1,4 @@
-// Image decoding through OpenImageIO, into linear float texels or the 8-bit codes themselves.
+// Image decoding through OpenImageIO, into linear float texels or the 8-bit codes or halves themselves.
 #pragma once
 
 #include <cstddef>
@@ -11,8 +11,9 @@ namespace prism {
 // Auto: float images (EXR, HDR) are linear, integer ones (PNG, JPEG) sRGB-encoded.
 enum class ColorSpace { Linear, Srgb, Auto };
 
-// How texels are kept. Float: linear floats, whatever the source. Compact: an 8-bit source keeps
-// its codes (ImageDesc::bytes, with ImageDesc::srgb saying how its colour channels decode).
+// How texels are kept. Float: linear floats, whatever the source (ImageDesc::texels). Compact: an
+// 8-bit source keeps its codes (ImageDesc::bytes, with ImageDesc::srgb saying how its colour
+// channels decode) and a linear half-float source its halves (ImageDesc::halves); others are floats.
 enum class TexelStorage { Float, Compact };
 
 // Decodes an encoded image (PNG, JPEG, EXR, ... sniffed from the bytes). With ColorSpace::Srgb
@@ -22,7 +23,7 @@ enum class TexelStorage { Float, Compact };
 ImageDesc decode_image(const unsigned char* data, size_t size, ColorSpace space, const std::string& file,
                        const std::string& element, TexelStorage storage = TexelStorage::Compact);
 
-// Reads an image file from disk the same way, into floats.
-ImageDesc read_image_file(const std::string& path, ColorSpace space);
+// Reads an image file from disk the same way, into floats unless asked otherwise.
+ImageDesc read_image_file(const std::string& path, ColorSpace space, TexelStorage storage = TexelStorage::Float);
 
 }  // namespace prism

@@ -2,6 +2,8 @@
 // against its pdf, and unbiased lighting of a plane under a map with a hot spot.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
 
 #include "chi_square.h"
@@ -212,6 +214,41 @@ TEST(Environment, FromJobFileAndErrors) {
   missing.map = dir + "/nope.exr";
   EXPECT_THROW(apply_environment(missing, scene), InputError);
   EXPECT_THROW(parse_job_json(R"({"environment": {}})", dir + "/job.json", diag), InputError);
+}
+
+// A half-float EXR map keeps its halves (half the memory of floats), and is checked for negative
+// and non-finite pixels like any other map.
+TEST(Environment, HalfMapKeepsItsHalvesAndIsChecked) {
+  const std::string dir = test::make_temp_dir("envhalf");
+  const auto write_half_exr = [&](const std::string& name, float last) {
+    std::vector<float> pixels(8 * 4 * 3, 0.75f);
+    pixels.back() = last;
+    auto out = OIIO::ImageOutput::create(dir + "/" + name);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(dir + "/" + name, OIIO::ImageSpec(8, 4, 3, OIIO::TypeDesc::HALF)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+  };
+  write_half_exr("good.exr", 2.5f);
+  write_half_exr("negative.exr", -1.0f);
+  write_half_exr("infinite.exr", INFINITY);
+  EnvironmentSpec spec;
+  spec.map = dir + "/good.exr";
+  SceneDesc scene;
+  apply_environment(spec, scene);
+  ASSERT_EQ(scene.images.size(), 1u);
+  EXPECT_TRUE(scene.images[0].holds_halves());
+  EXPECT_EQ(scene.images[0].texel(7, 3).rgb.z, 2.5f);
+  for (const char* bad : {"negative.exr", "infinite.exr"}) {
+    spec.map = dir + "/" + bad;
+    SceneDesc other;
+    try {
+      apply_environment(spec, other);
+      ADD_FAILURE() << bad << ": expected an InputError";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("negative or non-finite pixels"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <bit>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -107,6 +109,76 @@ TEST(Textures, EightBitTexelsKeptAsBytesReadAsTheirFloatDecoding) {
         }
     }
   }
+}
+
+// Every one of the 65536 halves reads as the float it stands for (IEEE 754 binary16: sign,
+// 5 exponent bits biased by 15, 10 mantissa bits; exponent 0 subnormal, 31 infinity and NaN).
+TEST(Textures, HalfToFloatIsExactForEveryHalf) {
+  for (uint32_t h = 0; h < 0x10000u; ++h) {
+    const int exponent = int(h >> 10) & 0x1f, mantissa = int(h & 0x3ffu);
+    const float sign = (h & 0x8000u) ? -1.0f : 1.0f;
+    const float got = half_to_float(uint16_t(h));
+    if (exponent == 31) {
+      if (mantissa == 0)
+        ASSERT_EQ(got, sign * INFINITY) << h;
+      else
+        ASSERT_TRUE(std::isnan(got)) << h;
+      continue;
+    }
+    const float expected = exponent == 0 ? sign * std::ldexp(float(mantissa), -24)
+                                         : sign * std::ldexp(float(1024 + mantissa), exponent - 25);
+    ASSERT_EQ(std::bit_cast<uint32_t>(got), std::bit_cast<uint32_t>(expected)) << h;
+  }
+}
+
+// A half-float EXR kept as its halves reads exactly what decoding it to floats gives, for every
+// channel layout; one whose channels are not all half (half colour, float alpha) is kept as floats.
+TEST(Textures, HalfTexelsKeptAsHalvesReadAsTheirFloatDecoding) {
+  const std::string dir = test::make_temp_dir("texhalves");
+  const std::vector<float> values = {0.0f, 1e-6f, 6.1e-5f, 0.25f, 0.5f, 1.0f, 3.14159f, 1000.0f, 60000.0f, 0.1f, 7.0f};
+  const auto write = [&](const std::string& path, int width, int height, const OIIO::ImageSpec& spec) {
+    std::vector<float> pixels(size_t(width) * height * spec.nchannels);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = values[(i * 7 + i / 3) % values.size()];
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+  };
+  const auto file_bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const auto same_texels = [](const ImageDesc& a, const ImageDesc& b) {
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x) {
+        const Rgba p = a.texel(x, y), q = b.texel(x, y);
+        if (p.rgb != q.rgb || p.a != q.a) return false;
+      }
+    return true;
+  };
+  const int width = 16, height = 3;
+  for (int channels : {1, 2, 3, 4}) {
+    const std::string path = dir + "/h" + std::to_string(channels) + ".exr";
+    write(path, width, height, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::HALF));
+    const std::vector<unsigned char> exr = file_bytes(path);
+    const ImageDesc halves = decode_image(exr.data(), exr.size(), ColorSpace::Auto, path, "image", TexelStorage::Compact);
+    const ImageDesc floats = decode_image(exr.data(), exr.size(), ColorSpace::Auto, path, "image", TexelStorage::Float);
+    ASSERT_TRUE(halves.holds_halves()) << channels;
+    ASSERT_FALSE(floats.holds_halves());
+    EXPECT_EQ(halves.memory_bytes() * 2, floats.memory_bytes());
+    EXPECT_TRUE(same_texels(halves, floats)) << channels << " channels";
+    const ImageDesc from_file = read_image_file(path, ColorSpace::Linear, TexelStorage::Compact);
+    EXPECT_TRUE(from_file.holds_halves());
+    EXPECT_TRUE(same_texels(from_file, floats));
+  }
+  const std::string mixed_path = dir + "/mixed.exr";
+  OIIO::ImageSpec mixed(width, height, 4, OIIO::TypeDesc::HALF);
+  mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT};
+  write(mixed_path, width, height, mixed);
+  const ImageDesc compact = read_image_file(mixed_path, ColorSpace::Linear, TexelStorage::Compact);
+  EXPECT_FALSE(compact.holds_halves());
+  EXPECT_TRUE(same_texels(compact, read_image_file(mixed_path, ColorSpace::Linear)));
 }
 
 TEST(Textures, KhrTextureTransformOffsetRotationScale) {

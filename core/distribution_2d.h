@@ -25,6 +25,8 @@ class Distribution2D {
   static uint64_t footprint(int width, int height);
 
   bool empty() const { return marginal_.size() == 0; }
+  // The sum of the positive weights.
+  double total() const { return marginal_.total(); }
 
   // A point in [0,1)^2 and its density with respect to area in [0,1)^2.
   Vec2 sample(Vec2 u, float& pdf) const {

@@ -33,25 +33,18 @@ EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
     // The map is in memory already; its distribution comes on top (a float per texel).
     require_memory(image_->memory_bytes() + Distribution2D::footprint(w, h),
                    image_->name + ": the environment map with its sampling distribution");
-    // Texels weighted by luminance and by the solid angle of their row (sin theta).
+    // Texels weighted by luminance and by the solid angle of their row (sin theta). Row by row:
+    // an 8K map's grid of weights in doubles alone would take 256 MiB.
     const auto row_sin = [h](int y) { return std::sin(kPi * (y + 0.5) / h); };
-    const auto weight = [&](int x, int y, double sin_t) {
-      return double(std::max(0.0f, luminance(image_->texel(x, y).rgb * scale_))) * sin_t;
-    };
-    double sum = 0, solid_angle_sum = 0;
-    for (int y = 0; y < h; ++y) {
-      const double sin_t = row_sin(y);
-      for (int x = 0; x < w; ++x) {
-        sum += weight(x, y, sin_t);
-        solid_angle_sum += sin_t;
-      }
-    }
-    mean_luminance_ = solid_angle_sum > 0 ? sum / solid_angle_sum : 0.0;
-    // Row by row: an 8K map's grid of weights in doubles alone would take 256 MiB.
     distribution_ = Distribution2D(w, h, [&](int y, std::vector<double>& row) {
       const double sin_t = row_sin(y);
-      for (int x = 0; x < w; ++x) row[size_t(x)] = weight(x, y, sin_t);
+      for (int x = 0; x < w; ++x)
+        row[size_t(x)] = double(std::max(0.0f, luminance(image_->texel(x, y).rgb * scale_))) * sin_t;
     });
+    // The mean over the sphere: the weights' total over the solid angle they stand for.
+    double solid_angle_sum = 0;
+    for (int y = 0; y < h; ++y) solid_angle_sum += row_sin(y);
+    mean_luminance_ = solid_angle_sum > 0 ? distribution_.total() / (solid_angle_sum * w) : 0.0;
   } else {
     mean_luminance_ = std::max(0.0f, luminance(scale_));
   }

@@ -1,4 +1,4 @@
-// ImageDesc: a decoded image's texels, kept as floats or as the 8-bit codes or half floats they came in.
+// ImageDesc: a decoded image's texels, kept as floats or as the 8- or 16-bit codes or half floats they came in.
 #pragma once
 
 #include <array>
@@ -44,21 +44,24 @@ inline float half_to_float(uint16_t h) {
 // Texels with row 0 at the top (as images are stored), `channels` per texel (1: grey, 2: grey and
 // alpha, 3: RGB, 4: RGBA). 8-bit sources keep their bytes, decoded when read: a quarter of the
 // memory of floats, and four times the texels per cache line, which is what a texture lookup
-// waits on. Half-float sources (most EXR environment maps) keep their halves: half the memory of
-// floats, exactly the same values. Everything else (float, 16-bit) is held as linear floats.
+// waits on. Half-float sources (most EXR environment maps) and linear 16-bit ones (normal maps)
+// keep their halves or codes: half the memory of floats, exactly the same values. Everything else
+// (float, sRGB 16-bit) is held as linear floats.
 struct ImageDesc {
   std::string name;
   int width = 0, height = 0, channels = 0;
   std::vector<float> texels;     // linear, when the image is held as floats
   std::vector<uint8_t> bytes;    // the 8-bit codes as stored in the file, when held as bytes
   std::vector<uint16_t> halves;  // linear half floats as stored in the file, when held as halves
+  std::vector<uint16_t> words;   // linear 16-bit codes as stored in the file, when held as words
   bool srgb = false;             // the bytes' colour channels are sRGB-encoded (alpha never is)
 
   bool holds_bytes() const { return !bytes.empty(); }
   bool holds_halves() const { return !halves.empty(); }
+  bool holds_words() const { return !words.empty(); }
   size_t texel_count() const { return size_t(width) * size_t(height); }
   size_t memory_bytes() const {
-    return texels.size() * sizeof(float) + bytes.size() + halves.size() * sizeof(uint16_t);
+    return texels.size() * sizeof(float) + bytes.size() + (halves.size() + words.size()) * sizeof(uint16_t);
   }
 
   // Starts fetching the texel at column x, row y into the cache.
@@ -68,6 +71,8 @@ struct ImageDesc {
       __builtin_prefetch(&bytes[i]);
     else if (!halves.empty())
       __builtin_prefetch(&halves[i]);
+    else if (!words.empty())
+      __builtin_prefetch(&words[i]);
     else
       __builtin_prefetch(&texels[i]);
   }
@@ -76,30 +81,28 @@ struct ImageDesc {
   Rgba texel(int x, int y) const {
     const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);
     if (!bytes.empty()) {
-      const uint8_t* b = &bytes[i];
       const std::array<float, 256>& colour = srgb ? kSrgbCodes : kLinearCodes;
-      switch (channels) {
-        case 1: return {Rgb(colour[b[0]]), 1.0f};
-        case 2: return {Rgb(colour[b[0]]), kLinearCodes[b[1]]};
-        case 3: return {Rgb(colour[b[0]], colour[b[1]], colour[b[2]]), 1.0f};
-        default: return {Rgb(colour[b[0]], colour[b[1]], colour[b[2]]), kLinearCodes[b[3]]};
-      }
+      return decode(&bytes[i], [&](uint8_t c) { return colour[c]; }, [](uint8_t c) { return kLinearCodes[c]; });
     }
-    if (!halves.empty()) {
-      const uint16_t* h = &halves[i];
-      switch (channels) {
-        case 1: return {Rgb(half_to_float(h[0])), 1.0f};
-        case 2: return {Rgb(half_to_float(h[0])), half_to_float(h[1])};
-        case 3: return {Rgb(half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2])), 1.0f};
-        default: return {Rgb(half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2])), half_to_float(h[3])};
-      }
+    if (!halves.empty()) return decode(&halves[i], half_to_float, half_to_float);
+    if (!words.empty()) {
+      // code x (1 / 65535), as OpenImageIO converts 16-bit samples to float.
+      const auto unorm = [](uint16_t w) { return float(w) * (1.0f / 65535.0f); };
+      return decode(&words[i], unorm, unorm);
     }
-    const float* t = &texels[i];
+    const auto same = [](float v) { return v; };
+    return decode(&texels[i], same, same);
+  }
+
+ private:
+  // A texel from its stored values v: the colour channels through `colour`, alpha through `alpha`.
+  template <typename Stored, typename Colour, typename Alpha>
+  Rgba decode(const Stored* v, Colour colour, Alpha alpha) const {
     switch (channels) {
-      case 1: return {Rgb(t[0]), 1.0f};
-      case 2: return {Rgb(t[0]), t[1]};
-      case 3: return {Rgb(t[0], t[1], t[2]), 1.0f};
-      default: return {Rgb(t[0], t[1], t[2]), t[3]};
+      case 1: return {Rgb(colour(v[0])), 1.0f};
+      case 2: return {Rgb(colour(v[0])), alpha(v[1])};
+      case 3: return {Rgb(colour(v[0]), colour(v[1]), colour(v[2])), 1.0f};
+      default: return {Rgb(colour(v[0]), colour(v[1]), colour(v[2])), alpha(v[3])};
     }
   }
 };

@@ -12,13 +12,14 @@ namespace prism {
 // of dynamic loading, although most renders read no image and write no PNG.
 class ImageCodecs {
  public:
-  // How samples are read: as floats (any image), or as their own 8-bit codes or half floats
-  // (only images whose every channel is stored so: the read is then exact).
-  enum class Samples { Float, Uint8, Half };
+  // How samples are read: as floats (any image), or as their own 8-bit or 16-bit codes or half
+  // floats (only images whose every channel is stored so: the read is then exact).
+  enum class Samples { Float, Uint8, Uint16, Half };
   struct Info {
     int width = 0, height = 0, channels = 0;
     bool is_float = false;  // FLOAT, HALF or DOUBLE samples: linear data, not sRGB-encoded
     bool is_8bit = false;   // every channel UINT8: Samples::Uint8 reads them exactly
+    bool is_16bit = false;  // every channel UINT16: Samples::Uint16 reads them exactly
     bool is_half = false;   // every channel HALF: Samples::Half reads them exactly
   };
   // An opened image whose header is read; read() decodes its first `channels` channels.
@@ -26,7 +27,7 @@ class ImageCodecs {
    public:
     virtual ~Input() = default;
     virtual Info info() const = 0;
-    // Fills width x height x channels samples of the given kind (4, 1 or 2 bytes each); false with
+    // Fills width x height x channels samples of the given kind (floats, or 8- or 16-bit values); false with
     // `error` set when the data is bad.
     virtual bool read(int channels, Samples kind, void* texels, std::string& error) = 0;
   };

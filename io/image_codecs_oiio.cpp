@@ -29,14 +29,16 @@ class OiioInput final : public ImageCodecs::Input {
     info.channels = spec.nchannels;
     info.is_float = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
     info.is_8bit = every_channel(OIIO::TypeDesc::UINT8);
+    info.is_16bit = every_channel(OIIO::TypeDesc::UINT16);
     info.is_half = every_channel(OIIO::TypeDesc::HALF);
     return info;
   }
 
   bool read(int channels, ImageCodecs::Samples kind, void* texels, std::string& error) override {
-    const OIIO::TypeDesc type = kind == ImageCodecs::Samples::Uint8  ? OIIO::TypeDesc::UINT8
-                                : kind == ImageCodecs::Samples::Half ? OIIO::TypeDesc::HALF
-                                                                     : OIIO::TypeDesc::FLOAT;
+    const OIIO::TypeDesc type = kind == ImageCodecs::Samples::Uint8    ? OIIO::TypeDesc::UINT8
+                                : kind == ImageCodecs::Samples::Uint16 ? OIIO::TypeDesc::UINT16
+                                : kind == ImageCodecs::Samples::Half   ? OIIO::TypeDesc::HALF
+                                                                       : OIIO::TypeDesc::FLOAT;
     if (in_->read_image(0, 0, 0, channels, type, texels)) return true;
     error = in_->geterror();
     return false;

@@ -24,12 +24,14 @@ ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, TexelStorage stora
     throw InputError(file, element, "image has an unusable size " + std::to_string(spec.width) + "x" +
                                         std::to_string(spec.height) + "x" + std::to_string(spec.channels));
   if (space == ColorSpace::Auto) space = spec.is_float ? ColorSpace::Linear : ColorSpace::Srgb;
-  // Compact storage keeps 8-bit codes as they are, and linear halves (halves to be sRGB-decoded
-  // would change value: they become floats).
-  const bool as_bytes = storage == TexelStorage::Compact && spec.is_8bit;
-  const bool as_halves = storage == TexelStorage::Compact && spec.is_half && space == ColorSpace::Linear;
+  // Compact storage keeps 8-bit codes as they are, and linear halves and 16-bit codes (those to be
+  // sRGB-decoded become floats: a table for 65536 codes would cost more than it saves).
+  const bool compact = storage == TexelStorage::Compact;
+  const bool as_bytes = compact && spec.is_8bit;
+  const bool as_halves = compact && spec.is_half && space == ColorSpace::Linear;
+  const bool as_words = compact && spec.is_16bit && space == ColorSpace::Linear;
   const uint64_t values = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(std::min(spec.channels, 4));
-  require_memory(values * (as_bytes ? 1 : as_halves ? sizeof(uint16_t) : sizeof(float)),
+  require_memory(values * (as_bytes ? 1 : as_halves || as_words ? sizeof(uint16_t) : sizeof(float)),
                  element.empty() ? file : file + ": " + element);
   ImageDesc img;
   img.width = spec.width;
@@ -45,9 +47,10 @@ ImageDesc read_from(ImageCodecs::Input& in, ColorSpace space, TexelStorage stora
     img.srgb = space == ColorSpace::Srgb;
     return img;
   }
-  if (as_halves) {
-    resize_on_huge_pages(img.halves, size_t(values));
-    read(ImageCodecs::Samples::Half, img.halves.data());
+  if (as_halves || as_words) {
+    std::vector<uint16_t>& codes = as_halves ? img.halves : img.words;
+    resize_on_huge_pages(codes, size_t(values));
+    read(as_halves ? ImageCodecs::Samples::Half : ImageCodecs::Samples::Uint16, codes.data());
     return img;
   }
   resize_on_huge_pages(img.texels, size_t(values));

@@ -13,7 +13,8 @@ enum class ColorSpace { Linear, Srgb, Auto };
 
 // How texels are kept. Float: linear floats, whatever the source (ImageDesc::texels). Compact: an
 // 8-bit source keeps its codes (ImageDesc::bytes, with ImageDesc::srgb saying how its colour
-// channels decode) and a linear half-float source its halves (ImageDesc::halves); others are floats.
+// channels decode), a linear half-float source its halves (ImageDesc::halves) and a linear 16-bit
+// source its codes (ImageDesc::words); others are floats.
 enum class TexelStorage { Float, Compact };
 
 // Decodes an encoded image (PNG, JPEG, EXR, ... sniffed from the bytes). With ColorSpace::Srgb

@@ -18,6 +18,20 @@
 namespace prism {
 namespace {
 
+// Writes `pixels` (samples of `type`, laid out as `spec` says) as the image file at `path`.
+::testing::AssertionResult write_image(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
+                                       const void* pixels) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out || !out->open(path, spec) || !out->write_image(type, pixels) || !out->close())
+    return ::testing::AssertionFailure() << "cannot write " << path;
+  return ::testing::AssertionSuccess();
+}
+
+std::vector<unsigned char> file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 TEST(WrapTexel, GltfWrapModes) {
   EXPECT_EQ(wrap_texel(-1, 4, WrapMode::Repeat), 3);
   EXPECT_EQ(wrap_texel(5, 4, WrapMode::Repeat), 1);
@@ -84,15 +98,9 @@ TEST(Textures, EightBitTexelsKeptAsBytesReadAsTheirFloatDecoding) {
     std::vector<unsigned char> pixels(size_t(width) * height * channels);
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<unsigned char>((i / channels + 37 * (i % channels)) % 256);
     const std::string path = dir + "/c" + std::to_string(channels) + ".png";
-    {
-      auto out = OIIO::ImageOutput::create(path);
-      ASSERT_TRUE(out);
-      ASSERT_TRUE(out->open(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8)));
-      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
-      out->close();
-    }
-    std::ifstream in(path, std::ios::binary);
-    const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_TRUE(write_image(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8),
+                            OIIO::TypeDesc::UINT8, pixels.data()));
+    const std::vector<unsigned char> png = file_bytes(path);
     for (ColorSpace space : {ColorSpace::Srgb, ColorSpace::Linear}) {
       const ImageDesc bytes = decode_image(png.data(), png.size(), space, path, "image", TexelStorage::Compact);
       const ImageDesc floats = decode_image(png.data(), png.size(), space, path, "image", TexelStorage::Float);
@@ -136,18 +144,10 @@ TEST(Textures, HalfToFloatIsExactForEveryHalf) {
 TEST(Textures, HalfTexelsKeptAsHalvesReadAsTheirFloatDecoding) {
   const std::string dir = test::make_temp_dir("texhalves");
   const std::vector<float> values = {0.0f, 1e-6f, 6.1e-5f, 0.25f, 0.5f, 1.0f, 3.14159f, 1000.0f, 60000.0f, 0.1f, 7.0f};
-  const auto write = [&](const std::string& path, int width, int height, const OIIO::ImageSpec& spec) {
-    std::vector<float> pixels(size_t(width) * height * spec.nchannels);
+  const auto write = [&](const std::string& path, const OIIO::ImageSpec& spec) {
+    std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = values[(i * 7 + i / 3) % values.size()];
-    auto out = OIIO::ImageOutput::create(path);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(path, spec));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    out->close();
-  };
-  const auto file_bytes = [](const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return write_image(path, spec, OIIO::TypeDesc::FLOAT, pixels.data());
   };
   const auto same_texels = [](const ImageDesc& a, const ImageDesc& b) {
     for (int y = 0; y < a.height; ++y)
@@ -160,7 +160,7 @@ TEST(Textures, HalfTexelsKeptAsHalvesReadAsTheirFloatDecoding) {
   const int width = 16, height = 3;
   for (int channels : {1, 2, 3, 4}) {
     const std::string path = dir + "/h" + std::to_string(channels) + ".exr";
-    write(path, width, height, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::HALF));
+    ASSERT_TRUE(write(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::HALF)));
     const std::vector<unsigned char> exr = file_bytes(path);
     const ImageDesc halves = decode_image(exr.data(), exr.size(), ColorSpace::Auto, path, "image", TexelStorage::Compact);
     const ImageDesc floats = decode_image(exr.data(), exr.size(), ColorSpace::Auto, path, "image", TexelStorage::Float);
@@ -175,10 +175,38 @@ TEST(Textures, HalfTexelsKeptAsHalvesReadAsTheirFloatDecoding) {
   const std::string mixed_path = dir + "/mixed.exr";
   OIIO::ImageSpec mixed(width, height, 4, OIIO::TypeDesc::HALF);
   mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT};
-  write(mixed_path, width, height, mixed);
+  ASSERT_TRUE(write(mixed_path, mixed));
   const ImageDesc compact = read_image_file(mixed_path, ColorSpace::Linear, TexelStorage::Compact);
   EXPECT_FALSE(compact.holds_halves());
   EXPECT_TRUE(same_texels(compact, read_image_file(mixed_path, ColorSpace::Linear)));
+}
+
+// A linear 16-bit PNG (a normal map) kept as its codes reads exactly what decoding it to floats
+// gives, for every one of the 65536 codes and every channel layout; an sRGB one is kept as floats.
+TEST(Textures, SixteenBitLinearTexelsKeptAsCodesReadAsTheirFloatDecoding) {
+  const std::string dir = test::make_temp_dir("texwords");
+  const int width = 256, height = 256;  // 65536 texels: every code in every channel, shifted per channel
+  for (int channels : {1, 2, 3, 4}) {
+    std::vector<uint16_t> pixels(size_t(width) * height * channels);
+    for (size_t i = 0; i < pixels.size(); ++i)
+      pixels[i] = static_cast<uint16_t>((i / channels + 12345 * (i % channels)) % 65536);
+    const std::string path = dir + "/w" + std::to_string(channels) + ".png";
+    ASSERT_TRUE(write_image(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT16),
+                            OIIO::TypeDesc::UINT16, pixels.data()));
+    const std::vector<unsigned char> png = file_bytes(path);
+    const ImageDesc words = decode_image(png.data(), png.size(), ColorSpace::Linear, path, "image", TexelStorage::Compact);
+    const ImageDesc floats = decode_image(png.data(), png.size(), ColorSpace::Linear, path, "image", TexelStorage::Float);
+    ASSERT_TRUE(words.holds_words());
+    EXPECT_EQ(words.memory_bytes() * 2, floats.memory_bytes());
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const Rgba a = words.texel(x, y), b = floats.texel(x, y);
+        ASSERT_TRUE(a.rgb == b.rgb && a.a == b.a) << channels << " channels, texel " << x << "," << y;
+      }
+    const ImageDesc srgb = decode_image(png.data(), png.size(), ColorSpace::Srgb, path, "image", TexelStorage::Compact);
+    EXPECT_FALSE(srgb.holds_words());
+    EXPECT_FALSE(srgb.texels.empty());
+  }
 }
 
 TEST(Textures, KhrTextureTransformOffsetRotationScale) {

@@ -13,6 +13,13 @@
 
 namespace prism {
 
+// The column and row of the cell of a width x height grid over [0,1)^2 that holds p, clamped to
+// the grid (an image's texels, a distribution's cells).
+inline std::pair<int, int> grid_cell(Vec2 p, int width, int height) {
+  return {std::clamp(static_cast<int>(p.x * float(width)), 0, width - 1),
+          std::clamp(static_cast<int>(p.y * float(height)), 0, height - 1)};
+}
+
 class Distribution2D {
  public:
   Distribution2D() = default;
@@ -55,8 +62,7 @@ class Distribution2D {
  private:
   // The column and row of the cell holding p.
   std::pair<size_t, size_t> cell(Vec2 p) const {
-    const int x = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
-    const int y = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
+    const auto [x, y] = grid_cell(p, width_, height_);
     return {size_t(x), size_t(y)};
   }
 

@@ -9,16 +9,6 @@
 #include "core/sampling.h"
 
 namespace prism {
-namespace {
-
-// The texel that holds map coordinates uv (column, row): nearest texel, the radiance being
-// piecewise constant exactly as the sampling density is.
-std::pair<int, int> texel_at(const ImageDesc& img, Vec2 uv) {
-  return {std::clamp(static_cast<int>(uv.x * float(img.width)), 0, img.width - 1),
-          std::clamp(static_cast<int>(uv.y * float(img.height)), 0, img.height - 1)};
-}
-
-}  // namespace
 
 EnvironmentLight::EnvironmentLight(const SceneDesc& desc) {
   const EnvironmentDesc& env = desc.environment;
@@ -81,7 +71,7 @@ EnvironmentLight::Seen EnvironmentLight::seen(const Vec3& w) const {
 
 Vec2 EnvironmentLight::prefetch(const Vec3& w) const {
   const Vec2 uv = direction_to_uv(w);
-  const auto [x, y] = texel_at(*image_, uv);
+  const auto [x, y] = grid_cell(uv, image_->width, image_->height);
   image_->prefetch(x, y);
   distribution_.prefetch(uv);
   return uv;
@@ -120,8 +110,9 @@ float EnvironmentLight::pdf(const Vec3& w) const {
   return map_pdf(direction_to_uv(w));
 }
 
+// The nearest texel: the radiance is piecewise constant exactly as the sampling density is.
 Rgb EnvironmentLight::map_radiance(Vec2 uv) const {
-  const auto [x, y] = texel_at(*image_, uv);
+  const auto [x, y] = grid_cell(uv, image_->width, image_->height);
   return image_->texel(x, y).rgb * scale_;
 }
 

@@ -2,7 +2,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -318,10 +317,12 @@ void apply_environment(const EnvironmentSpec& spec, SceneDesc& scene) {
   if (spec.map) {
     // A half-float EXR keeps its halves: an 8K map then takes 192 MiB instead of 384.
     ImageDesc img = read_image_file(*spec.map, ColorSpace::Auto, TexelStorage::Compact);
+    // Every stored value, whatever the storage, as the renderer will read it.
     const auto unusable = [](float v) { return !std::isfinite(v) || v < 0; };
-    if (std::any_of(img.texels.begin(), img.texels.end(), unusable) ||
-        std::any_of(img.halves.begin(), img.halves.end(), [&](uint16_t h) { return unusable(half_to_float(h)); }))
-      throw InputError(*spec.map, "environment map", "has negative or non-finite pixels");
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        if (const Rgba t = img.texel(x, y); unusable(t.rgb.x) || unusable(t.rgb.y) || unusable(t.rgb.z) || unusable(t.a))
+          throw InputError(*spec.map, "environment map", "has negative or non-finite pixels");
     env.image = static_cast<int>(scene.images.size());
     env.source = *spec.map;
     scene.images.push_back(std::move(img));

@@ -1,4 +1,4 @@
-// ImageDesc: a decoded image's texels, kept as floats or as the 8- or 16-bit codes or half floats they came in.
+// ImageDesc: a decoded image's texels, kept as floats or as the 8- or 16-bit codes, half floats or RGBE texels they came in.
 #pragma once
 
 #include <array>
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/rgbe.h"
 #include "core/vec3.h"
 
 namespace prism {
@@ -45,8 +46,9 @@ inline float half_to_float(uint16_t h) {
 // alpha, 3: RGB, 4: RGBA). 8-bit sources keep their bytes, decoded when read: a quarter of the
 // memory of floats, and four times the texels per cache line, which is what a texture lookup
 // waits on. Half-float sources (most EXR environment maps) and linear 16-bit ones (normal maps)
-// keep their halves or codes: half the memory of floats, exactly the same values. Everything else
-// (float, sRGB 16-bit) is held as linear floats.
+// keep their halves or codes: half the memory of floats, exactly the same values. Radiance .hdr
+// sources keep their shared-exponent texels: a third of the memory of floats, exactly the same
+// values. Everything else (float, sRGB 16-bit) is held as linear floats.
 struct ImageDesc {
   std::string name;
   int width = 0, height = 0, channels = 0;
@@ -54,21 +56,26 @@ struct ImageDesc {
   std::vector<uint8_t> bytes;    // the 8-bit codes as stored in the file, when held as bytes
   std::vector<uint16_t> halves;  // linear half floats as stored in the file, when held as halves
   std::vector<uint16_t> words;   // linear 16-bit codes as stored in the file, when held as words
+  std::vector<RgbeTexel> rgbe;   // one per texel (channels is 3), when held as RGBE
   bool srgb = false;             // the bytes' colour channels are sRGB-encoded (alpha never is)
 
   bool holds_bytes() const { return !bytes.empty(); }
   bool holds_halves() const { return !halves.empty(); }
   bool holds_words() const { return !words.empty(); }
+  bool holds_rgbe() const { return !rgbe.empty(); }
   size_t texel_count() const { return size_t(width) * size_t(height); }
   size_t memory_bytes() const {
-    return texels.size() * sizeof(float) + bytes.size() + (halves.size() + words.size()) * sizeof(uint16_t);
+    return texels.size() * sizeof(float) + bytes.size() + (halves.size() + words.size()) * sizeof(uint16_t) +
+           rgbe.size() * sizeof(RgbeTexel);
   }
 
   // Starts fetching the texel at column x, row y into the cache.
   void prefetch(int x, int y) const {
-    const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);
+    const size_t texel = size_t(y) * size_t(width) + size_t(x), i = texel * size_t(channels);
     if (!bytes.empty())
       __builtin_prefetch(&bytes[i]);
+    else if (!rgbe.empty())
+      __builtin_prefetch(&rgbe[texel]);
     else if (!halves.empty())
       __builtin_prefetch(&halves[i]);
     else if (!words.empty())
@@ -79,11 +86,12 @@ struct ImageDesc {
 
   // The texel at column x, row y, linear; grey is replicated to RGB, alpha is 1 without a channel.
   Rgba texel(int x, int y) const {
-    const size_t i = (size_t(y) * size_t(width) + size_t(x)) * size_t(channels);
+    const size_t texel = size_t(y) * size_t(width) + size_t(x), i = texel * size_t(channels);
     if (!bytes.empty()) {
       const std::array<float, 256>& colour = srgb ? kSrgbCodes : kLinearCodes;
       return decode(&bytes[i], [&](uint8_t c) { return colour[c]; }, [](uint8_t c) { return kLinearCodes[c]; });
     }
+    if (!rgbe.empty()) return {rgbe_to_rgb(rgbe[texel]), 1.0f};
     if (!halves.empty()) return decode(&halves[i], half_to_float, half_to_float);
     if (!words.empty()) {
       // code x (1 / 65535), as OpenImageIO converts 16-bit samples to float.

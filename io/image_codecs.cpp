@@ -39,8 +39,8 @@ const ImageCodecs* open_module(std::string& error) {
       continue;
     }
     using Entry = const ImageCodecs* (*)();
-    if (const auto entry = reinterpret_cast<Entry>(dlsym(handle, "prism_image_codecs_v3"))) return entry();
-    failed(path + ": has no prism_image_codecs_v3");
+    if (const auto entry = reinterpret_cast<Entry>(dlsym(handle, "prism_image_codecs_v4"))) return entry();
+    failed(path + ": has no prism_image_codecs_v4");
   }
   return nullptr;
 }

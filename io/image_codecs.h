@@ -13,14 +13,17 @@ namespace prism {
 class ImageCodecs {
  public:
   // How samples are read: as floats (any image), or as their own 8-bit or 16-bit codes or half
-  // floats (only images whose every channel is stored so: the read is then exact).
-  enum class Samples { Float, Uint8, Uint16, Half };
+  // floats (only images whose every channel is stored so: the read is then exact), or as RGBE
+  // texels (core/rgbe.h; 3 channels of a Radiance .hdr file), which read() refuses unless every
+  // texel turns back into exactly the floats the file decodes to.
+  enum class Samples { Float, Uint8, Uint16, Half, Rgbe };
   struct Info {
     int width = 0, height = 0, channels = 0;
     bool is_float = false;  // FLOAT, HALF or DOUBLE samples: linear data, not sRGB-encoded
     bool is_8bit = false;   // every channel UINT8: Samples::Uint8 reads them exactly
     bool is_16bit = false;  // every channel UINT16: Samples::Uint16 reads them exactly
     bool is_half = false;   // every channel HALF: Samples::Half reads them exactly
+    bool is_rgbe = false;   // a Radiance .hdr file: Samples::Rgbe may read it
   };
   // An opened image whose header is read; read() decodes its first `channels` channels.
   class Input {
@@ -48,4 +51,4 @@ const ImageCodecs& image_codecs();
 }  // namespace prism
 
 // The module's one export: its codecs, which live as long as the process.
-extern "C" const prism::ImageCodecs* prism_image_codecs_v3();
+extern "C" const prism::ImageCodecs* prism_image_codecs_v4();

@@ -2,6 +2,12 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/rgbe.h"
 #include "io/image_codecs.h"
 
 namespace prism {
@@ -31,10 +37,12 @@ class OiioInput final : public ImageCodecs::Input {
     info.is_8bit = every_channel(OIIO::TypeDesc::UINT8);
     info.is_16bit = every_channel(OIIO::TypeDesc::UINT16);
     info.is_half = every_channel(OIIO::TypeDesc::HALF);
+    info.is_rgbe = std::string_view(in_->format_name()) == "hdr" && spec.nchannels == 3;
     return info;
   }
 
   bool read(int channels, ImageCodecs::Samples kind, void* texels, std::string& error) override {
+    if (kind == ImageCodecs::Samples::Rgbe) return read_rgbe(channels, static_cast<RgbeTexel*>(texels), error);
     const OIIO::TypeDesc type = kind == ImageCodecs::Samples::Uint8    ? OIIO::TypeDesc::UINT8
                                 : kind == ImageCodecs::Samples::Uint16 ? OIIO::TypeDesc::UINT16
                                 : kind == ImageCodecs::Samples::Half   ? OIIO::TypeDesc::HALF
@@ -45,6 +53,35 @@ class OiioInput final : public ImageCodecs::Input {
   }
 
  private:
+  // Reads floats a band of rows at a time and packs each texel, so the whole image never exists
+  // as floats.
+  bool read_rgbe(int channels, RgbeTexel* texels, std::string& error) {
+    const OIIO::ImageSpec& spec = in_->spec();
+    if (channels != 3 || spec.nchannels != 3) {
+      error = "RGBE texels need 3 channels";
+      return false;
+    }
+    constexpr int kBand = 64;
+    const size_t width = size_t(spec.width);
+    std::vector<float> band(width * 3 * kBand);
+    for (int y0 = 0; y0 < spec.height; y0 += kBand) {
+      const int y1 = std::min(spec.height, y0 + kBand);
+      if (!in_->read_scanlines(0, 0, spec.y + y0, spec.y + y1, 0, 0, 3, OIIO::TypeDesc::FLOAT, band.data())) {
+        error = in_->geterror();
+        return false;
+      }
+      for (size_t i = 0; i < size_t(y1 - y0) * width; ++i) {
+        const std::optional<RgbeTexel> t = exact_rgbe({band[3 * i], band[3 * i + 1], band[3 * i + 2]});
+        if (!t) {
+          error = "a texel is not exactly an RGBE value";
+          return false;
+        }
+        texels[size_t(y0) * width + i] = *t;
+      }
+    }
+    return true;
+  }
+
   std::unique_ptr<OIIO::Filesystem::IOMemReader> memory_;
   std::unique_ptr<OIIO::ImageInput> in_;
 };
@@ -89,7 +126,7 @@ class OiioCodecs final : public ImageCodecs {
 }  // namespace
 }  // namespace prism
 
-extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v3() {
+extern "C" __attribute__((visibility("default"))) const prism::ImageCodecs* prism_image_codecs_v4() {
   static const prism::OiioCodecs codecs;
   return &codecs;
 }

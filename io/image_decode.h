@@ -1,4 +1,4 @@
-// Image decoding through OpenImageIO, into linear float texels or the 8-bit codes or halves themselves.
+// Image decoding through OpenImageIO, into linear float texels or the codes, halves or RGBE texels themselves.
 #pragma once
 
 #include <cstddef>
@@ -13,8 +13,9 @@ enum class ColorSpace { Linear, Srgb, Auto };
 
 // How texels are kept. Float: linear floats, whatever the source (ImageDesc::texels). Compact: an
 // 8-bit source keeps its codes (ImageDesc::bytes, with ImageDesc::srgb saying how its colour
-// channels decode), a linear half-float source its halves (ImageDesc::halves) and a linear 16-bit
-// source its codes (ImageDesc::words); others are floats.
+// channels decode), a linear half-float source its halves (ImageDesc::halves), a linear 16-bit
+// source its codes (ImageDesc::words) and a linear Radiance .hdr source its RGBE texels
+// (ImageDesc::rgbe, when each decodes exactly to the floats the file gives); others are floats.
 enum class TexelStorage { Float, Compact };
 
 // Decodes an encoded image (PNG, JPEG, EXR, ... sniffed from the bytes). With ColorSpace::Srgb

@@ -5,21 +5,30 @@
 
 namespace prism {
 
+namespace {
+
+// i modulo a positive period, in [0, period). Most textures are a power of two wide and high, where
+// a mask gives it: an integer division, which it saves, takes tens of cycles, and a lookup has four.
+int modulo(int i, int period) {
+  if ((period & (period - 1)) == 0) return i & (period - 1);  // two's complement: floor modulo
+  const int m = i % period;
+  return m < 0 ? m + period : m;
+}
+
+}  // namespace
+
 int wrap_texel(int i, int n, WrapMode mode) {
   switch (mode) {
     case WrapMode::ClampToEdge:
       return i < 0 ? 0 : (i >= n ? n - 1 : i);
     case WrapMode::MirroredRepeat: {
       const int period = 2 * n;
-      int m = i % period;
-      if (m < 0) m += period;
+      const int m = modulo(i, period);
       return m < n ? m : period - 1 - m;
     }
     case WrapMode::Repeat:
-    default: {
-      const int m = i % n;
-      return m < 0 ? m + n : m;
-    }
+    default:
+      return modulo(i, n);
   }
 }
 
@@ -51,10 +60,14 @@ std::optional<Footprint> footprint(const ImageDesc& img, const TextureDesc& tex,
   const int x0 = floor_to_int(x), y0 = floor_to_int(y);
   f.fx = x - std::floor(x);
   f.fy = y - std::floor(y);
+  // The texel after a repeating one is the next, or the first after the last: no second modulo.
+  const auto next = [](int a, int first, int n, WrapMode mode) {
+    return mode == WrapMode::Repeat ? (a + 1 == n ? 0 : a + 1) : wrap_texel(first + 1, n, mode);
+  };
   f.xa = wrap_texel(x0, img.width, tex.wrap_s);
-  f.xb = wrap_texel(x0 + 1, img.width, tex.wrap_s);
+  f.xb = next(f.xa, x0, img.width, tex.wrap_s);
   f.ya = wrap_texel(y0, img.height, tex.wrap_t);
-  f.yb = wrap_texel(y0 + 1, img.height, tex.wrap_t);
+  f.yb = next(f.ya, y0, img.height, tex.wrap_t);
   return f;
 }
 

@@ -3,6 +3,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -56,6 +57,24 @@ TEST(WrapTexel, GltfWrapModes) {
   EXPECT_EQ(wrap_texel(4, 4, WrapMode::MirroredRepeat), 3);
   EXPECT_EQ(wrap_texel(-1, 4, WrapMode::MirroredRepeat), 0);
   EXPECT_EQ(wrap_texel(8, 4, WrapMode::MirroredRepeat), 0);
+}
+
+// The wrap of every texel coordinate near and far from the image, for widths that are powers of
+// two (wrapped by a mask) and others, against glTF's definitions written with 64-bit floor modulo.
+TEST(WrapTexel, EveryCoordinateMatchesTheDefinitions) {
+  const auto floor_mod = [](int64_t i, int64_t n) { return ((i % n) + n) % n; };
+  int mismatches = 0;
+  for (int n : {1, 2, 3, 4, 5, 7, 8, 1000, 1024, 2048, 4097}) {
+    std::vector<int> coordinates = {-1000000000, 1000000000, 999999999, -999999999};
+    for (int i = -3 * n - 2; i <= 3 * n + 2; ++i) coordinates.push_back(i);
+    for (int i : coordinates) {
+      const int64_t mirrored = floor_mod(i, 2 * int64_t(n));
+      mismatches += wrap_texel(i, n, WrapMode::Repeat) != floor_mod(i, n);
+      mismatches += wrap_texel(i, n, WrapMode::MirroredRepeat) != (mirrored < n ? mirrored : 2 * n - 1 - mirrored);
+      mismatches += wrap_texel(i, n, WrapMode::ClampToEdge) != std::clamp(i, 0, n - 1);
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {

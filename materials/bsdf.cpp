@@ -87,21 +87,14 @@ bool Bsdf::lobe_is_delta(int lobe) const {
   }
 }
 
-Rgb Bsdf::lobe_f(int lobe, const Vec3& wi) const {
+BxdfValue Bsdf::lobe_value(int lobe, const Vec3& wi) const {
   switch (lobe) {
-    case kMetal: return metal_->f(wo_, wi);
-    case kDielectric: return dielectric_->f(wo_, wi);
-    case kCoat: return coat_->f(wo_, wi);
-    default: return wi.z > 0 && wo_.z > 0 ? diffuse_.f() : Rgb{};
-  }
-}
-
-float Bsdf::lobe_pdf(int lobe, const Vec3& wi) const {
-  switch (lobe) {
-    case kMetal: return metal_->pdf(wo_, wi);
-    case kDielectric: return dielectric_->pdf(wo_, wi);
-    case kCoat: return coat_->pdf(wo_, wi);
-    default: return wi.z > 0 && wo_.z > 0 ? Lambertian::pdf(wi) : 0.0f;
+    case kMetal: return metal_->evaluate(wo_, wi);
+    case kDielectric: return dielectric_->evaluate(wo_, wi);
+    case kCoat: return coat_->evaluate(wo_, wi);
+    default:
+      if (wi.z > 0 && wo_.z > 0) return {diffuse_.f(), Lambertian::pdf(wi)};
+      return {};
   }
 }
 
@@ -117,13 +110,16 @@ Bsdf::Value Bsdf::evaluate(const Vec3& wi_world) const {
   if (!valid_ || delta_only_) return {};
   const Vec3 wi = frame_.to_local(wi_world);
   if (!consistent(wi_world, wi)) return {};
-  if (only_lobe_ >= 0)
-    return {lobe_f(only_lobe_, wi) * (weight_[only_lobe_] * std::abs(wi.z)), pick_[only_lobe_] * lobe_pdf(only_lobe_, wi)};
+  if (only_lobe_ >= 0) {
+    const BxdfValue l = lobe_value(only_lobe_, wi);
+    return {l.f * (weight_[only_lobe_] * std::abs(wi.z)), pick_[only_lobe_] * l.pdf};
+  }
   Value v;
   for (int k = 0; k < kLobes; ++k) {
-    if (lobe_is_delta(k)) continue;
-    if (weight_[k] > 0) v.f_cos += lobe_f(k, wi) * weight_[k];
-    if (pick_[k] > 0) v.pdf += pick_[k] * lobe_pdf(k, wi);
+    if (lobe_is_delta(k) || !(weight_[k] > 0 || pick_[k] > 0)) continue;
+    const BxdfValue l = lobe_value(k, wi);
+    if (weight_[k] > 0) v.f_cos += l.f * weight_[k];
+    if (pick_[k] > 0) v.pdf += pick_[k] * l.pdf;
   }
   v.f_cos *= std::abs(wi.z);
   return v;

@@ -56,8 +56,8 @@ class Bsdf {
  private:
   enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };
 
-  Rgb lobe_f(int lobe, const Vec3& wi) const;
-  float lobe_pdf(int lobe, const Vec3& wi) const;
+  // The lobe's f (unweighted) and its own density of choosing wi.
+  BxdfValue lobe_value(int lobe, const Vec3& wi) const;
   bool lobe_is_delta(int lobe) const;
   bool consistent(const Vec3& wi_world, const Vec3& wi_local) const;
 

@@ -5,6 +5,13 @@
 
 namespace prism {
 
+// f(wo, wi) and the density of sample() choosing wi, from one pass over what they share (the
+// half vector, Fresnel, the normal distribution and wo's masking).
+struct BxdfValue {
+  Rgb f;
+  float pdf = 0;
+};
+
 struct BxdfSample {
   Vec3 wi;
   Rgb f;          // f(wo, wi); for a delta lobe, the value that makes f |cos| / pdf the lobe's weight

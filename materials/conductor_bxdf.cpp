@@ -8,21 +8,15 @@ namespace prism {
 
 Rgb ConductorBxdf::reflectance(float cos_o) const { return fresnel_schlick(f0_, cos_o); }
 
-Rgb ConductorBxdf::f(const Vec3& wo, const Vec3& wi) const {
+BxdfValue ConductorBxdf::evaluate(const Vec3& wo, const Vec3& wi) const {
   if (smooth_ || wo.z <= 0 || wi.z <= 0) return {};
   const Vec3 h = wo + wi;
   if (!(length_squared(h) > 0)) return {};
   const Vec3 wm = normalize(h);
-  // Torrance-Sparrow: D G F / (4 cos_o cos_i).
-  return fresnel_schlick(f0_, dot(wo, wm)) * (ggx_.D(wm) * ggx_.G(wo, wi) / (4.0f * wo.z * wi.z));
-}
-
-float ConductorBxdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (smooth_ || wo.z <= 0 || wi.z <= 0) return 0;
-  const Vec3 h = wo + wi;
-  if (!(length_squared(h) > 0)) return 0;
-  const Vec3 wm = normalize(h);
-  return ggx_.D_visible(wo, wm) / (4.0f * std::abs(dot(wo, wm)));
+  const float d = ggx_.D(wm), lambda_o = ggx_.lambda(wo);
+  // Torrance-Sparrow: D G F / (4 cos_o cos_i); density: the visible normals', reflected.
+  return {fresnel_schlick(f0_, dot(wo, wm)) * (d * GgxDistribution::G(lambda_o, ggx_.lambda(wi)) / (4.0f * wo.z * wi.z)),
+          GgxDistribution::D_visible(wo, wm, d, lambda_o) / (4.0f * std::abs(dot(wo, wm)))};
 }
 
 std::optional<BxdfSample> ConductorBxdf::sample(const Vec3& wo, Vec2 u) const {
@@ -38,8 +32,9 @@ std::optional<BxdfSample> ConductorBxdf::sample(const Vec3& wo, Vec2 u) const {
   const Vec3 wm = ggx_.sample_visible(wo, u);
   s.wi = reflect(wo, wm);
   if (s.wi.z <= 0) return std::nullopt;
-  s.f = f(wo, s.wi);
-  s.pdf = pdf(wo, s.wi);
+  const BxdfValue v = evaluate(wo, s.wi);
+  s.f = v.f;
+  s.pdf = v.pdf;
   if (!(s.pdf > 0)) return std::nullopt;
   return s;
 }

@@ -14,8 +14,9 @@ class ConductorBxdf {
   ConductorBxdf(const Rgb& f0, float alpha) : f0_(f0), ggx_(alpha), smooth_(alpha < GgxDistribution::kSmoothAlpha) {}
 
   bool is_delta() const { return smooth_; }
-  Rgb f(const Vec3& wo, const Vec3& wi) const;
-  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BxdfValue evaluate(const Vec3& wo, const Vec3& wi) const;
+  Rgb f(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).f; }
+  float pdf(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).pdf; }
   std::optional<BxdfSample> sample(const Vec3& wo, Vec2 u) const;
   // Reflectance at normal cosine cos_o, for choosing between lobes.
   Rgb reflectance(float cos_o) const;

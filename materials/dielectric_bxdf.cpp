@@ -60,7 +60,7 @@ bool DielectricBxdf::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float
   return true;
 }
 
-Rgb DielectricBxdf::f(const Vec3& wo, const Vec3& wi) const {
+BxdfValue DielectricBxdf::evaluate(const Vec3& wo, const Vec3& wi) const {
   if (is_delta()) return {};
   const bool reflect = wo.z * wi.z > 0;
   if (!reflect && mode_ == Mode::ReflectionOnly) return {};
@@ -72,36 +72,30 @@ Rgb DielectricBxdf::f(const Vec3& wo, const Vec3& wi) const {
   if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return {};
   const Split F = split(dot(wo, wm));
   const float R = F.scalar;
+  const float d = ggx_.D(wm), lambda_o = ggx_.lambda(wo);
   const float cos_o = std::abs(wo.z), cos_i = std::abs(wi.z);
-  if (reflect) return F.reflect * (ggx_.D(wm) * ggx_.G(wo, wi) / (4.0f * cos_i * cos_o));
-  if (mode_ == Mode::ThinWalled) return tint_ * (ggx_.D(wm) * ggx_.G(wo, wi_m) * (1.0f - R) / (4.0f * cos_i * cos_o));
-  // Walter et al. eq. 21, with radiance scaled by 1 / etap^2 crossing the boundary.
-  const float denom = dot(wi, wm) + dot(wo, wm) / etap;
-  const float ft = ggx_.D(wm) * ggx_.G(wo, wi) * (1.0f - R) *
-                   std::abs(dot(wi, wm) * dot(wo, wm) / (cos_i * cos_o * denom * denom));
-  return tint_ * (ft / (etap * etap));
-}
-
-float DielectricBxdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (is_delta()) return 0;
-  const bool reflect = wo.z * wi.z > 0;
-  if (!reflect && mode_ == Mode::ReflectionOnly) return 0;
-  Vec3 wm;
-  float etap;
-  if (!half_vector(wo, wi, wm, etap)) return 0;
-  const Vec3 wi_m = (reflect || mode_ != Mode::ThinWalled) ? wi : flip_z(wi);
-  if (dot(wm, wi_m) * wi_m.z < 0 || dot(wm, wo) * wo.z < 0) return 0;
-  const float R = split(dot(wo, wm)).scalar;
+  BxdfValue v;
+  // The density: reflection or transmission chosen by Fresnel, then the visible normals' density
+  // mapped to wi.
   const float pr = mode_ == Mode::ReflectionOnly ? 1.0f : R;
   const float pt = mode_ == Mode::ReflectionOnly ? 0.0f : 1.0f - R;
-  if (pr + pt <= 0) return 0;
   if (reflect || mode_ == Mode::ThinWalled) {
+    const float g = GgxDistribution::G(lambda_o, ggx_.lambda(wi_m));
+    v.f = reflect ? F.reflect * (d * g / (4.0f * cos_i * cos_o)) : tint_ * (d * g * (1.0f - R) / (4.0f * cos_i * cos_o));
     // dwm/dwi = 1 / (4 |wo.wm|) for the mirror direction.
-    return ggx_.D_visible(wo, wm) / (4.0f * std::abs(dot(wo, wm))) * (reflect ? pr : pt) / (pr + pt);
+    if (!(pr + pt <= 0))
+      v.pdf = GgxDistribution::D_visible(wo, wm, d, lambda_o) / (4.0f * std::abs(dot(wo, wm))) * (reflect ? pr : pt) /
+              (pr + pt);
+    return v;
   }
+  // Walter et al. eq. 21, with radiance scaled by 1 / etap^2 crossing the boundary.
   const float denom = dot(wi, wm) + dot(wo, wm) / etap;
+  const float ft = d * GgxDistribution::G(lambda_o, ggx_.lambda(wi)) * (1.0f - R) *
+                   std::abs(dot(wi, wm) * dot(wo, wm) / (cos_i * cos_o * denom * denom));
+  v.f = tint_ * (ft / (etap * etap));
   const float dwm_dwi = std::abs(dot(wi, wm)) / (denom * denom);
-  return ggx_.D_visible(wo, wm) * dwm_dwi * pt / (pr + pt);
+  if (!(pr + pt <= 0)) v.pdf = GgxDistribution::D_visible(wo, wm, d, lambda_o) * dwm_dwi * pt / (pr + pt);
+  return v;
 }
 
 std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, Vec2 u) const {
@@ -154,8 +148,9 @@ std::optional<BxdfSample> DielectricBxdf::sample(const Vec3& wo, float u_lobe, V
     s.transmission = true;
     s.eta = etap;
   }
-  s.f = f(wo, s.wi);
-  s.pdf = pdf(wo, s.wi);
+  const BxdfValue v = evaluate(wo, s.wi);
+  s.f = v.f;
+  s.pdf = v.pdf;
   if (!(s.pdf > 0)) return std::nullopt;
   return s;
 }

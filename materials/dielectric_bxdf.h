@@ -33,8 +33,9 @@ class DielectricBxdf {
   Rgb reflectance_rgb(float cos_o) const;
 
   bool is_delta() const { return smooth_ || eta_ == 1.0f; }
-  Rgb f(const Vec3& wo, const Vec3& wi) const;
-  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BxdfValue evaluate(const Vec3& wo, const Vec3& wi) const;
+  Rgb f(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).f; }
+  float pdf(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).pdf; }
   std::optional<BxdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const;
 
   // A smooth thin sheet's delta transmission: what passes straight through along -wo (tint x

@@ -38,15 +38,18 @@ class GgxDistribution {
     return 0.5f * (std::sqrt(1.0f + alpha_ * alpha_ * tan2) - 1.0f);
   }
   float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
-  // Height-correlated masking-shadowing (Heitz 2014, eq. 99).
-  float G(const Vec3& wo, const Vec3& wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
+  // Height-correlated masking-shadowing (Heitz 2014, eq. 99), from the two directions' Lambdas.
+  static float G(float lambda_o, float lambda_i) { return 1.0f / (1.0f + lambda_o + lambda_i); }
+  float G(const Vec3& wo, const Vec3& wi) const { return G(lambda(wo), lambda(wi)); }
 
-  // Distribution of normals visible from w: G1(w) max(0, w.wm) D(wm) / |w.z|.
-  float D_visible(const Vec3& w, const Vec3& wm) const {
+  // Distribution of normals visible from w: G1(w) max(0, w.wm) D(wm) / |w.z|, given D(wm) and
+  // lambda(w) where they are at hand.
+  static float D_visible(const Vec3& w, const Vec3& wm, float d, float lambda_w) {
     const float cos_o = std::abs(w.z);
     if (cos_o == 0) return 0;
-    return G1(w) * std::max(0.0f, std::abs(dot(w, wm))) * D(wm) / cos_o;
+    return 1.0f / (1.0f + lambda_w) * std::max(0.0f, std::abs(dot(w, wm))) * d / cos_o;
   }
+  float D_visible(const Vec3& w, const Vec3& wm) const { return D_visible(w, wm, D(wm), lambda(w)); }
 
   // A microfacet normal distributed as D_visible(w, .), for w in either hemisphere (the result is
   // in w's hemisphere).

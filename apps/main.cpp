@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
   cmd->add_option("--light-sampler", render.settings.light_sampler,
                   "How next-event estimation picks a light: tree (default; by each light's importance at the shading "
                   "point, from a light tree) or power (in proportion to emitted power, the same everywhere)");
+  cmd->add_option("--texture-filter", render.settings.texture_filter,
+                  "How textures are read: bilinear (default; the full-size image at every lookup) or trilinear (from "
+                  "MIP levels chosen by each lookup's footprint, its pixel's ray cone: less texture noise where a "
+                  "pixel spans many texels, e.g. at low spp, for slightly softer textures and about 7% more time)");
   cmd->add_option("--res", render.resolution,
                   "Image size WIDTHxHEIGHT, e.g. 1280x720 (default: 512 high, width from the camera's aspect ratio)");
   cmd->add_option("--camera", render.settings.camera,

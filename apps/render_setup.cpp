@@ -8,6 +8,7 @@
 
 #include "apps/command_errors.h"
 #include "core/hash.h"
+#include "core/mip_levels.h"
 #include "core/sample_schedule.h"
 #include "core/sampler_factory.h"
 #include "integrators/integrator_factory.h"
@@ -64,6 +65,8 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
         "a sample range renders a fixed slice of samples: it cannot be combined with --time, --noise or --allocation "
         "error");
   check_allocation_name("--allocation", s.allocation);
+  if (s.texture_filter != "trilinear" && s.texture_filter != "bilinear")
+    throw UsageError("--texture-filter: unknown filter '" + s.texture_filter + "' (expected trilinear or bilinear)");
   if (s.allocation == "error" && s.noise_target > 0)
     throw UsageError("--allocation error cannot be combined with --noise, which shares samples by its own rule");
   // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
@@ -164,6 +167,7 @@ PreparedRender prepare_render(const RenderOptions& o) {
 }
 
 void build_scene(PreparedRender& p, bool quiet) {
+  if (p.settings.texture_filter == "trilinear") build_texture_mips(p.desc, p.scene_path);
   try {
     p.scene = std::make_unique<Scene>(std::move(p.desc), &material_alpha, light_sampling(p.settings.light_sampler));
   } catch (const std::invalid_argument& e) {

@@ -40,12 +40,15 @@ Ray Camera::generate_ray(float fx, float fy) const {
     const Vec3 d = forward_ + right_ * sx + up_ * sy;
     const float len = length(d);
     ray.dir = d / len;
+    // A pixel is 2 half_h / height wide at unit distance along the axis, len away along the ray.
+    ray.cone_spread = 2.0f * half_h_ / (static_cast<float>(height_) * len);
     // Clip planes are perpendicular to the view axis: convert plane depth to ray distance.
     ray.t_min = desc_.znear * len;
     if (desc_.zfar > 0) ray.t_max = desc_.zfar * len;
   } else {
     ray.origin = position_ + right_ * sx + up_ * sy;
     ray.dir = forward_;
+    ray.cone_width = 2.0f * half_h_ / static_cast<float>(height_);  // a pixel's width, the same all along
     ray.t_min = desc_.znear;
     if (desc_.zfar > 0) ray.t_max = desc_.zfar;
   }

@@ -1,6 +1,7 @@
 // ImageDesc: a decoded image's texels, kept as floats or as the 8- or 16-bit codes, half floats or RGBE texels they came in.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -58,6 +59,10 @@ struct ImageDesc {
   std::vector<uint16_t> words;   // linear 16-bit codes as stored in the file, when held as words
   std::vector<RgbeTexel> rgbe;   // one per texel (channels is 3), when held as RGBE
   bool srgb = false;             // the bytes' colour channels are sRGB-encoded (alpha never is)
+  // The image's MIP levels after this one, each half the size of the one before down to 1x1, held
+  // as bytes or 16-bit codes when the image is, else as floats (core/mip_levels.h); empty unless
+  // textures are filtered by their footprint.
+  std::vector<ImageDesc> mips;
 
   bool holds_bytes() const { return !bytes.empty(); }
   bool holds_halves() const { return !halves.empty(); }
@@ -65,8 +70,14 @@ struct ImageDesc {
   bool holds_rgbe() const { return !rgbe.empty(); }
   size_t texel_count() const { return size_t(width) * size_t(height); }
   size_t memory_bytes() const {
-    return texels.size() * sizeof(float) + bytes.size() + (halves.size() + words.size()) * sizeof(uint16_t) +
-           rgbe.size() * sizeof(RgbeTexel);
+    size_t sum = texels.size() * sizeof(float) + bytes.size() + (halves.size() + words.size()) * sizeof(uint16_t) +
+                 rgbe.size() * sizeof(RgbeTexel);
+    for (const ImageDesc& level : mips) sum += level.memory_bytes();
+    return sum;
+  }
+  // MIP level `level`: 0 is this image, 1 the first of `mips`; clamped to the coarsest.
+  const ImageDesc& level(int level) const {
+    return level <= 0 || mips.empty() ? *this : mips[size_t(std::min(level, int(mips.size()))) - 1];
   }
 
   // Starts fetching the texel at column x, row y into the cache.

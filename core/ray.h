@@ -27,6 +27,14 @@ struct Ray {
   // The triangle this ray was spawned from: a plane is never met twice by one ray, so any hit
   // on it is Embree's rounding (docs/NUMERICS.md, "Own-face hits") and is ignored.
   TriangleId leaves;
+  // A cone around the ray, for the footprint of texture lookups where it meets a surface (ray
+  // cones, Akenine-Moller et al. 2019): its width at the origin, and how fast it widens per unit of
+  // distance (radians). A camera ray's cone spans its pixel; 0, 0: a thin ray.
+  float cone_width = 0;
+  float cone_spread = 0;
+
+  // The cone's width at parameter t.
+  float cone_width_at(float t) const { return cone_spread > 0 ? cone_width + cone_spread * t * length(dir) : cone_width; }
 };
 
 }  // namespace prism

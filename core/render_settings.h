@@ -24,6 +24,9 @@ struct RenderSettings {
   float caster_share = 0.25f;
   std::string sampler = "sobol";
   std::string light_sampler = "tree";  // how next-event estimation picks a light: tree or power
+  // How textures are read: "bilinear" (the full-size image at every lookup) or "trilinear" (MIP
+  // levels chosen by each lookup's ray-cone footprint).
+  std::string texture_filter = "bilinear";
   // Budgets beyond a fixed spp, stopping at whichever is met first (0 = not set):
   double time_budget = 0;      // seconds of rendering: progressive passes until spent
   double noise_target = 0;     // relative standard error per pixel: adaptive sampling
@@ -54,7 +57,7 @@ struct RenderSettingsOverride {
   std::optional<float> clamp_indirect, caster_share;
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
-  std::optional<std::string> camera, integrator, sampler, light_sampler, allocation;
+  std::optional<std::string> camera, integrator, sampler, light_sampler, allocation, texture_filter;
   std::optional<PixelWindow> crop;
   std::optional<uint64_t> first_sample;
   std::optional<AovSet> aovs;
@@ -74,6 +77,7 @@ struct RenderSettingsOverride {
     if (threads) s.threads = *threads;
     if (sampler) s.sampler = *sampler;
     if (light_sampler) s.light_sampler = *light_sampler;
+    if (texture_filter) s.texture_filter = *texture_filter;
     if (allocation) s.allocation = *allocation;
     if (seed) s.seed = *seed;
     if (camera) s.camera = *camera;

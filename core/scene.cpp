@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/constants.h"
 #include "core/embree_device.h"
 #include "core/embree_rays.h"
 #include "core/face_normal.h"
@@ -478,13 +479,24 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
     if (nlen > 0 && std::isfinite(nlen)) hit.ns = nw / nlen;
   }
   hit.uv = {0, 0};
+  hit.uv_per_length = 0;
+  hit.cone_width = 0;
   hit.tangent = Vec3(0.0f);
   hit.tangent_sign = 1.0f;
   if (!prim.uvs.empty()) {
     const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
     hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+    const MaterialDesc& material = desc_.material(prim.material);
+    if (features_.mip_levels && material.has_textures()) {
+      // Twice the triangle's area in uv and in space (Akenine-Moller et al. 2019, "Texture level
+      // of detail strategies for real-time ray tracing", eq. 3: the texel-to-area ratio).
+      const float uv_area = std::abs((t1.x - t0.x) * (t2.y - t0.y) - (t2.x - t0.x) * (t1.y - t0.y));
+      const float area = length(cross(p1 - p0, p2 - p0));
+      const float ratio = area > 0 ? std::sqrt(uv_area / area) : 0.0f;
+      hit.uv_per_length = std::isfinite(ratio) ? ratio : 0.0f;
+    }
     // Tangent frames serve normal maps only: other materials skip the work.
-    const bool wants_frame = desc_.material(prim.material).normal_texture.present();
+    const bool wants_frame = material.normal_texture.present();
     if (wants_frame && !prim.tangents.empty()) {
       // A mirroring transform reverses the frame's handedness (bitangents map by M, but
       // cross(M^-T n, M t) flips with det M).
@@ -538,6 +550,13 @@ void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceH
   hit.ng = n;
   hit.ns = n;
   hit.uv = sphere_uv(n);
+  // u runs once around a circle of radius r sin(theta), v half way around one of radius r: their
+  // geometric mean.
+  const float sin_theta = std::max(std::sqrt(n.x * n.x + n.z * n.z), 1e-4f);
+  hit.uv_per_length = features_.mip_levels && desc_.material(s.material).has_textures()
+                          ? 1.0f / (kPi * s.radius * std::sqrt(2.0f * sin_theta))
+                          : 0.0f;
+  hit.cone_width = 0;
   // dP/du around +Y; -dP/dv points to the north pole, up the image, so the sign is +1.
   const Vec3 t(n.z, 0.0f, -n.x);
   hit.tangent = length_squared(t) > 0 ? normalize(t) : Vec3(1, 0, 0);

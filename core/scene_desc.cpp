@@ -30,6 +30,8 @@ SceneFeatures SceneDesc::features() const {
   f.spheres = !spheres.empty();
   f.punctual_lights = !lights.empty();
   f.environment = environment.present;
+  for (const ImageDesc& image : images)
+    if (!image.mips.empty()) f.mip_levels = true;
   for (const auto& s : spheres)
     if (material(s.material).is_emissive()) f.emitters = true;
   for (const MaterialDesc& m : materials) {

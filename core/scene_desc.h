@@ -71,6 +71,11 @@ struct MaterialDesc {
     return {&base_color_texture,   &metallic_roughness_texture, &normal_texture,        &emissive_texture,
             &transmission_texture, &specular_texture,           &specular_color_texture};
   }
+  bool has_textures() const {
+    for (const TextureRef* ref : texture_slots())
+      if (ref->present()) return true;
+    return false;
+  }
   bool is_transmissive() const { return transmission > 0 || transmission_texture.present(); }
   // A closed volume whose interior is a medium (refraction, absorption).
   bool has_volume() const { return volume && is_transmissive(); }
@@ -169,6 +174,7 @@ struct SceneFeatures {
   bool spheres = false;
   bool instancing = false;  // some mesh is placed more than once
   bool textures = false;
+  bool mip_levels = false;  // some image has MIP levels: texture lookups need their footprints
   bool emitters = false;          // emissive surfaces
   bool punctual_lights = false;
   bool environment = false;

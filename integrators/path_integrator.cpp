@@ -274,7 +274,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
 }
 
 void PathIntegrator::leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi) {
-  path.ray = spawn_ray(hit, wi);
+  path.ray = spawn_ray_cone(hit, wi, path.ray);
   path.segment_start = hit.p;
   ++path.vertices;
 }
@@ -349,6 +349,8 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
     scene.intersect_packet(rays, m, hits, found, camera);
+    for (int i = 0; i < m; ++i)
+      if (found[i]) hits[i].cone_width = rays[i].cone_width_at(hits[i].t);
     // Every lane's texels (of its hit's textures, or of the sky map it escaped to) are asked for
     // before the first lane shades: their cache misses, which each lane would otherwise wait out
     // in turn, overlap.
@@ -360,7 +362,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         if (!found[i])
           sky_uv[i] = sky.has_map() ? sky.prefetch(normalize(rays[i].dir)) : Vec2{};
         else if (scene.features().textures)
-          prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv);
+          prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv, hits[i].uv_width());
       }
     // The vertices' draws, which do not depend on what a lane finds there, come first too: where
     // they choose a map's sky for the light sample, the lanes' sky samples are drawn together.

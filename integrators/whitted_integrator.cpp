@@ -30,6 +30,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
     if (aov) aov->emission = sky;
     return sky;
   }
+  hit.cone_width = ray.cone_width_at(hit.t);
   if (alpha) *alpha = 1.0f;
   if (aov) report_first_hit(scene.desc(), hit, *aov);
   const SceneDesc& desc = scene.desc();
@@ -49,7 +50,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
   if (depth >= max_depth_) return result();
 
   const MaterialDesc& material = desc.material(hit.material);
-  const SurfaceParams p = surface_params(desc, material, hit.uv);
+  const SurfaceParams p = surface_params(desc, material, hit.uv, hit.uv_width());
   const bool from_front = dot(wo, hit.ng) > 0;
   const bool volume = p.transmission > 0 && !p.thin_walled;
   const float eta = media.interface_eta(material, hit.material, from_front);
@@ -97,7 +98,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
     const Vec3 wr = reflect(wo, n_wo);
     if (dot(wr, ng) * dot(wo, ng) > 0) {
       ++counters.extension;
-      indirect += reflect_weight * trace(scene, spawn_ray(hit, wr), &hit.p, depth + 1, media, counters);
+      indirect += reflect_weight * trace(scene, spawn_ray_cone(hit, wr, ray), &hit.p, depth + 1, media, counters);
     }
   }
 
@@ -105,7 +106,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
   if (!is_black(transmit_weight)) {
     if (!volume) {
       ++counters.extension;
-      indirect += transmit_weight * trace(scene, spawn_ray(hit, -wo), &hit.p, depth + 1, media, counters);
+      indirect += transmit_weight * trace(scene, spawn_ray_cone(hit, -wo, ray), &hit.p, depth + 1, media, counters);
     } else {
       const Vec3 n = from_front ? n_front : -n_front;  // on wo's side
       const float etap = from_front ? eta : 1.0f / eta;
@@ -115,7 +116,7 @@ Rgb WhittedIntegrator::trace(const Scene& scene, const Ray& ray, const Vec3* fro
         inside.cross(material, hit.material, from_front);
         ++counters.extension;
         indirect += transmit_weight * (1.0f / (etap * etap)) *
-                    trace(scene, spawn_ray(hit, wt), &hit.p, depth + 1, inside, counters);
+                    trace(scene, spawn_ray_cone(hit, wt, ray), &hit.p, depth + 1, inside, counters);
       }
     }
   }

@@ -30,7 +30,7 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "stamp", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "sampler", "light_sampler", "allocation", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "clamp_indirect", "caster_share",
+                             "integrator", "sampler", "light_sampler", "texture_filter", "allocation", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "clamp_indirect", "caster_share",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
@@ -103,6 +103,8 @@ class JobParser {
     if (root.contains("sampler")) job.settings.sampler = string_at(root["sampler"], "$.sampler");
     if (root.contains("light_sampler"))
       job.settings.light_sampler = string_at(root["light_sampler"], "$.light_sampler");
+    if (root.contains("texture_filter"))
+      job.settings.texture_filter = string_at(root["texture_filter"], "$.texture_filter");
     if (root.contains("allocation")) job.settings.allocation = string_at(root["allocation"], "$.allocation");
     if (root.contains("time")) job.settings.time_budget = duration_at(root["time"], "$.time");
     if (root.contains("checkpoint")) job.checkpoint_seconds = duration_at(root["checkpoint"], "$.checkpoint");

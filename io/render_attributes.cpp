@@ -12,6 +12,7 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
       {"prism/integrator", s.integrator},
       {"prism/sampler", s.sampler},
       {"prism/lightSampler", s.light_sampler},
+      {"prism/textureFilter", s.texture_filter},
       {"prism/seed", std::to_string(s.seed)},
       {"prism/maxDepth", s.max_depth},
       {"prism/maxDiffuseDepth", s.max_diffuse_depth},

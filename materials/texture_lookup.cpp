@@ -3,6 +3,8 @@
 #include <cmath>
 #include <optional>
 
+#include "core/hash.h"
+
 namespace prism {
 
 namespace {
@@ -71,12 +73,9 @@ std::optional<Footprint> footprint(const ImageDesc& img, const TextureDesc& tex,
   return f;
 }
 
-}  // namespace
-
-Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
-  const TextureDesc& tex = scene.textures[ref.texture];
-  const ImageDesc& img = scene.images[tex.image];
-  const std::optional<Footprint> f = footprint(img, tex, ref.apply(uv));
+// The bilinear (or nearest) value of one image at uv.
+Rgba filtered_texel(const ImageDesc& img, const TextureDesc& tex, Vec2 uv) {
+  const std::optional<Footprint> f = footprint(img, tex, uv);
   if (!f) return {};
   if (tex.nearest) return img.texel(f->xa, f->ya);
   const Rgba a = img.texel(f->xa, f->ya), b = img.texel(f->xb, f->ya), c = img.texel(f->xa, f->yb),
@@ -86,10 +85,47 @@ Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
   return {a.rgb * wa + b.rgb * wb + c.rgb * wc + d.rgb * wd, a.a * wa + b.a * wb + c.a * wc + d.a * wd};
 }
 
-void prefetch_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv) {
+// The MIP level a footprint of uv_width (in the mesh's uv units) reads, as log2 of the level-0
+// texels it spans (<= 0: level 0 alone). The texture transform scales the footprint by the square
+// root of its area change; a non-square image's texels per uv unit are the geometric mean of its
+// width and height.
+float mip_lambda(const ImageDesc& img, const TextureDesc& tex, const TextureRef& ref, float uv_width) {
+  if (!(uv_width > 0) || img.mips.empty() || tex.nearest) return 0;
+  const std::array<float, 6>& t = ref.transform;
+  const float area_scale = std::abs(t[0] * t[4] - t[1] * t[3]);
+  const float texels = uv_width * std::sqrt(area_scale * float(img.width) * float(img.height));
+  return texels > 1 && std::isfinite(texels) ? std::log2(texels) : 0.0f;
+}
+
+// Trilinear filtering picks level floor(lambda) + 1 with probability frac(lambda), else
+// floor(lambda): the blend of the two levels in expectation, from the texels of one (Pharr et al.
+// 2024, "Filtering after shading with stochastic texture filtering"). The choice is a hash of the
+// lookup's coordinates, which the pixel's jitter makes a fresh uniform number for every sample.
+int stochastic_level(float lambda, Vec2 at) {
+  const int level = int(lambda);
+  const float w = lambda - float(level);
+  const float u = float(mix64((float_bits(at.x) << 32) | float_bits(at.y)) >> 40) * 0x1p-24f;
+  return u < w ? level + 1 : level;
+}
+
+}  // namespace
+
+Rgba lookup_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv, float uv_width) {
   const TextureDesc& tex = scene.textures[ref.texture];
   const ImageDesc& img = scene.images[tex.image];
-  const std::optional<Footprint> f = footprint(img, tex, ref.apply(uv));
+  const Vec2 at = ref.apply(uv);
+  const float lambda = mip_lambda(img, tex, ref, uv_width);
+  if (lambda <= 0) return filtered_texel(img, tex, at);
+  return filtered_texel(img.level(stochastic_level(lambda, at)), tex, at);
+}
+
+void prefetch_texture(const SceneDesc& scene, const TextureRef& ref, Vec2 uv, float uv_width) {
+  const TextureDesc& tex = scene.textures[ref.texture];
+  const ImageDesc& base = scene.images[tex.image];
+  const Vec2 at = ref.apply(uv);
+  const float lambda = mip_lambda(base, tex, ref, uv_width);
+  const ImageDesc& img = lambda > 0 ? base.level(stochastic_level(lambda, at)) : base;
+  const std::optional<Footprint> f = footprint(img, tex, at);
   if (!f) return;
   img.prefetch(f->xa, f->ya);
   if (!tex.nearest) img.prefetch(f->xa, f->yb);  // the second row; xb is nearly always in xa's line

@@ -131,6 +131,13 @@ run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/allocated.exr" --allocation err
 expect_match("${last_out}" "\\(mean 16\\.0\\) spp" "--allocation error missed its mean spp")
 file(STRINGS "${WORK_DIR}/allocated.exr" header LIMIT_INPUT 8000)
 expect_match("${header}" "prism/allocation;string;error" "the header does not record the allocation")
+# Texture filtering: MIP levels on request, recorded in the header; an unknown filter is refused.
+run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/trilinear.exr" --texture-filter trilinear --spp 4 --res 16x16)
+file(STRINGS "${WORK_DIR}/trilinear.exr" header LIMIT_INPUT 8000)
+expect_match("${header}" "prism/textureFilter;string;[^a-z]*trilinear" "the header does not record the texture filter")
+run(2 "${PRISM}" render "${box}" --texture-filter anisotropic -o "${WORK_DIR}/x.exr")
+expect_match("${last_err}" "--texture-filter: unknown filter 'anisotropic' \\(expected trilinear or bilinear\\)"
+             "unclear --texture-filter message")
 run(2 "${PRISM}" render "${box}" --allocation greedy -o "${WORK_DIR}/x.exr")
 expect_match("${last_err}" "--allocation: expected uniform or error, got 'greedy'" "unclear --allocation message")
 run(2 "${PRISM}" render "${box}" --allocation error --noise 0.1 -o "${WORK_DIR}/x.exr")

@@ -35,7 +35,7 @@ TEST(JobFile, BudgetsAndQualityKnobs) {
   Diagnostics diag;
   const JobFile job = parse(R"({"sampler": "independent", "time": "1m30s", "noise": 0.01, "min_spp": 8,
                                 "rr_start_depth": 5, "clamp_indirect": 10, "allocation": "error",
-                                "caster_share": 0.5})", diag);
+                                "caster_share": 0.5, "texture_filter": "trilinear"})", diag);
   RenderSettings s;
   job.settings.apply_to(s);
   EXPECT_EQ(s.sampler, "independent");
@@ -46,6 +46,7 @@ TEST(JobFile, BudgetsAndQualityKnobs) {
   EXPECT_EQ(s.clamp_indirect, 10.0f);
   EXPECT_EQ(s.caster_share, 0.5f);
   EXPECT_EQ(s.allocation, "error");
+  EXPECT_EQ(s.texture_filter, "trilinear");
   EXPECT_TRUE(diag.lines().empty());
 }
 

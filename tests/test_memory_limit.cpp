@@ -7,6 +7,7 @@
 #include "core/film.h"
 #include "core/huge_pages.h"
 #include "core/memory_limit.h"
+#include "core/mip_levels.h"
 #include "io/gltf_loader.h"
 
 namespace prism {
@@ -75,6 +76,32 @@ TEST(MemoryLimit, AnEnvironmentMapsDistributionPastTheLimitIsRefused) {
                  "sky.exr: the environment map with its sampling distribution needs about 18 MiB, more than the memory "
                  "limit of 16 MiB (--memory-limit)");
   }
+}
+
+// MIP levels add a third of each filtered texture's texels (as codes for 8-bit images), checked
+// with the images already held, before any level is built.
+TEST(MemoryLimit, MipLevelsPastTheLimitAreRefused) {
+  const ScopedMemoryLimit limit(uint64_t(16) << 20);
+  SceneDesc desc;
+  ImageDesc& img = desc.images.emplace_back();
+  img.width = img.height = 2048;
+  img.channels = 3;
+  img.bytes.assign(size_t(2048) * 2048 * 3, 128);  // 12 MiB: with its levels, 16 MiB and a bit
+  desc.textures.push_back(TextureDesc{});
+  desc.textures[0].image = 0;
+  desc.materials.emplace_back().base_color_texture.texture = 0;
+  try {
+    build_texture_mips(desc, "yard.glb");
+    FAIL() << "expected a MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "yard.glb: the textures with their MIP levels needs about 16 MiB, more than the memory limit of 16 "
+                 "MiB (--memory-limit)");
+  }
+  EXPECT_TRUE(desc.images[0].mips.empty());
+  const ScopedMemoryLimit roomy(uint64_t(17) << 20);
+  build_texture_mips(desc, "yard.glb");
+  EXPECT_EQ(desc.images[0].mips.size(), 11u);  // 1024^2 ... 1^2
 }
 
 // Huge pages are a hint to the kernel: a buffer resized on them holds what it held, zeros after it,

@@ -18,7 +18,7 @@ constexpr float kMaxSin2 = 0.5f, kMinSin2 = 1e-12f;
 }  // namespace
 
 bool CausticCasters::is_caster(const MaterialDesc& m) {
-  return ((m.metallic > 0 || m.has_volume()) && m.roughness <= kMaxRoughness);
+  return (m.metallic > 0 && m.roughness <= kMaxMetalRoughness) || (m.has_volume() && m.roughness <= kMaxGlassRoughness);
 }
 
 CausticCasters::CausticCasters(const SceneDesc& desc) {

@@ -34,11 +34,12 @@ bool aims_at(const CausticCasters& casters, const Vec3& c) {
   return v.pdf(normalize(c)) > 0 && v.pdf(-normalize(c)) == 0;
 }
 
-TEST(CausticCasters, AreSmoothMetalAndGlassOnlyPlacedInTheWorld) {
+TEST(CausticCasters, AreSmoothOrGlossyMetalAndSmoothGlassPlacedInTheWorld) {
   SceneDesc desc;
   test::add_quad(desc, Vec3(-5, -5, -1), Vec3(10, 0, 0), Vec3(0, 10, 0), test::add_material(desc, Rgb(0.5f)));
   test::add_sphere(desc, Vec3(0, 0, 5), 0.5f, add_metal(desc, 0.0f));          // a mirror: caster
   test::add_sphere(desc, Vec3(5, 0, 0), 0.5f, add_metal(desc, 0.6f));          // rough metal: not
+  test::add_sphere(desc, Vec3(0, 0, -5), 0.5f, add_metal(desc, 0.5f));         // glossy metal: caster
   const int rough_glass = test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, false, 0.5f);
   test::add_sphere(desc, Vec3(0, 5, 0), 0.5f, rough_glass);                    // rough glass: not
   // A glass box about the origin, placed at (0, -6, 0) by its instance: a caster there.
@@ -46,8 +47,9 @@ TEST(CausticCasters, AreSmoothMetalAndGlassOnlyPlacedInTheWorld) {
   test::add_box(desc, Vec3(-0.5f), Vec3(0.5f), glass);
   desc.instances.back().object_to_world = Transform::translate(Vec3(0, -6, 0));
   const CausticCasters casters(desc);
-  EXPECT_EQ(casters.size(), 2u);
+  EXPECT_EQ(casters.size(), 3u);
   EXPECT_TRUE(aims_at(casters, Vec3(0, 0, 5)));
+  EXPECT_TRUE(aims_at(casters, Vec3(0, 0, -5)));
   EXPECT_TRUE(aims_at(casters, Vec3(0, -6, 0)));
   EXPECT_FALSE(aims_at(casters, Vec3(5, 0, 0)));
   EXPECT_FALSE(aims_at(casters, Vec3(0, 5, 0)));

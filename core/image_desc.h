@@ -75,9 +75,9 @@ struct ImageDesc {
     for (const ImageDesc& level : mips) sum += level.memory_bytes();
     return sum;
   }
-  // MIP level `level`: 0 is this image, 1 the first of `mips`; clamped to the coarsest.
-  const ImageDesc& level(int level) const {
-    return level <= 0 || mips.empty() ? *this : mips[size_t(std::min(level, int(mips.size()))) - 1];
+  // MIP level k: 0 is this image, 1 the first of `mips`; clamped to the coarsest.
+  const ImageDesc& level(int k) const {
+    return k <= 0 || mips.empty() ? *this : mips[size_t(std::min(k, int(mips.size()))) - 1];
   }
 
   // Starts fetching the texel at column x, row y into the cache.

@@ -54,8 +54,6 @@ inline Ray spawn_ray(const SurfaceHit& from, const Vec3& dir) {
              from.triangle};
 }
 
-// A shadow ray from a surface hit toward a light `distance` away along unit direction w (+inf
-// for lights at infinity), stopping just short of it.
 // spawn_ray(from, dir), whose cone goes on from `from`'s width (SurfaceHit::cone_width) with the
 // spread of `arriving`, the ray that found it: as after a mirror, so a rough bounce's footprint is
 // underestimated (textures too sharp there, never too blurred).
@@ -66,6 +64,8 @@ inline Ray spawn_ray_cone(const SurfaceHit& from, const Vec3& dir, const Ray& ar
   return r;
 }
 
+// A shadow ray from a surface hit toward a light `distance` away along unit direction w (+inf
+// for lights at infinity), stopping just short of it.
 inline Ray spawn_ray_toward(const SurfaceHit& from, const Vec3& w, float distance) {
   Ray r = spawn_ray(from, w);
   r.t_max = std::isinf(distance) ? distance : distance * (1.0f - kShadowEpsilon);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/camera.h"
+#include "core/mip_levels.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "integrators/path_integrator.h"
@@ -123,6 +124,46 @@ TEST(Aovs, EmissionSeenDirectlyIsItsOwnLayer) {
         EXPECT_FLOAT_EQ(emission[size_t(y) * kSize + x], kLight.x) << integrator;
       }
     EXPECT_GT(light_pixels, 10) << integrator;
+  }
+}
+
+// With MIP levels, the camera's ray cones reach the texture lookups: a floor textured with a
+// checker of single texels, each pixel spanning about 13 of them, reads levels of exact grey
+// (every level from the first is 0.5 in every texel), so every floor pixel's albedo is exactly half
+// the factor, where the full-size checker leaves the pixels' means scattered around it.
+TEST(Aovs, TrilinearFilteringReadsTheLevelsAPixelSpans) {
+  SceneDesc desc = aov_scene();
+  ImageDesc& checker = desc.images.emplace_back();
+  checker.width = checker.height = 512;  // over the floor's 6 m: 13 texels per pixel at 5 m
+  checker.channels = 1;
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) checker.texels.push_back(float((x + y) % 2));
+  desc.textures.push_back(TextureDesc{});
+  desc.textures[0].image = 0;
+  desc.materials[0].base_color_texture.texture = 0;
+  const auto floor_albedo_spread = [&](bool mipped, const std::string& integrator) {
+    SceneDesc d = desc;
+    if (mipped) build_mip_levels(d.images[0]);
+    const Scene scene(std::move(d));
+    const PathIntegrator path(8, 3);
+    const WhittedIntegrator whitted(8);
+    const Film film =
+        render_aovs(scene, aov_settings(), integrator == "path" ? static_cast<const Integrator&>(path) : whitted);
+    const std::vector<float> albedo = film.resolve_average(Aov::Albedo, 0);
+    float spread = 0;
+    int floor_pixels = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        if (film.nearest_object(x, y) != 0 || film.crypto_objects()[size_t(y) * kSize + x].size() != 1) continue;
+        ++floor_pixels;
+        spread = std::max(spread, std::abs(albedo[size_t(y) * kSize + x] - 0.5f * kAlbedo.x));
+      }
+    EXPECT_GT(floor_pixels, 100);
+    return spread;
+  };
+  for (const std::string integrator : {"path", "whitted"}) {
+    EXPECT_LT(floor_albedo_spread(true, integrator), 1e-6f) << integrator;
+    EXPECT_GT(floor_albedo_spread(false, integrator), 0.01f) << integrator << ": the checker is not resolved at 16 spp";
   }
 }
 

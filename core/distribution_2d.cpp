@@ -1,9 +1,7 @@
 #include "core/distribution_2d.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "core/huge_pages.h"
+#include "core/parallel_ranges.h"
 
 namespace prism {
 
@@ -13,9 +11,9 @@ Distribution2D::Distribution2D(int width, int height,
   resize_on_huge_pages(cdfs_, size_t(height_) * (size_t(width_) + 1));
   resize_on_huge_pages(guides_, size_t(height_) * (slots_ + 1));
   std::vector<double> row_sums(size_t(height_), 0.0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& range) {
+  parallel_ranges(height_, 1, 0, [&](int first, int end) {
     std::vector<double> row(static_cast<size_t>(width_));
-    for (int y = range.begin(); y != range.end(); ++y) {
+    for (int y = first; y != end; ++y) {
       row_weights(y, row);
       for (double w : row) row_sums[size_t(y)] += w > 0 ? w : 0.0;
       float* cdf = cdfs_.data() + size_t(y) * (size_t(width_) + 1);

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "core/memory_limit.h"
+#include "core/parallel_ranges.h"
 
 namespace prism {
 
@@ -52,8 +50,8 @@ int first_source(int i, int n, int m) { return n == 2 * m ? 2 * i : int(int64_t(
 // `store(texel index, values)`.
 template <int C, typename Read, typename Store>
 void halve(int width, int height, int out_width, int out_height, const Read& read, const Store& store) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, out_height), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y) {
+  parallel_ranges(out_height, 1, 0, [&](int first, int end) {
+    for (int y = first; y != end; ++y) {
       const int y0 = first_source(y, height, out_height), y1 = first_source(y + 1, height, out_height);
       for (int x = 0; x < out_width; ++x) {
         const int x0 = first_source(x, width, out_width), x1 = first_source(x + 1, width, out_width);

@@ -1,7 +1,5 @@
 #include "core/renderer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -11,12 +9,11 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
+#include "core/parallel_ranges.h"
 #include "core/sample_schedule.h"
 #include "core/sampler_factory.h"
-#include "core/tsan_annotations.h"
 
 namespace prism {
 
@@ -111,31 +108,12 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     stats.nonfinite_samples += nonfinite;
   };
 
-#ifdef PRISM_TSAN
-  // oneTBB is an uninstrumented library: ThreadSanitizer cannot see its task scheduler's
-  // synchronisation and reports its internals (and the stack frames it reuses) as races. Its
-  // builds hand the same tiles to plain std::threads instead, which it sees whole; the tiles,
-  // their work, the film and the progress counters are those of every build.
+  // ThreadSanitizer builds hand the tiles to std::threads, settings.threads of them (parallel_ranges.h).
   auto run_pass = [&] {
-    std::atomic<int> next{0};
-    const int n = tiles_x * tiles_y;
-    auto worker = [&] {
-      for (int t; (t = next.fetch_add(1)) < n;) render_tile(t);
-    };
-    const int count = settings.threads > 0 ? settings.threads : int(std::max(2u, std::thread::hardware_concurrency()));
-    std::vector<std::thread> threads;
-    for (int i = 1; i < count; ++i) threads.emplace_back(worker);
-    worker();
-    for (auto& t : threads) t.join();
+    parallel_ranges(tiles_x * tiles_y, 1, settings.threads, [&](int first, int end) {
+      for (int t = first; t < end; ++t) render_tile(t);
+    });
   };
-#else
-  auto run_pass = [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
-                      [&](const tbb::blocked_range<int>& r) {
-                        for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
-                      });
-  };
-#endif
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
   SampleSchedule schedule(settings, width, height);

@@ -4,8 +4,8 @@
 // Embree and oneTBB are Debian shared libraries built without ThreadSanitizer, so the ordering
 // they give is invisible to it: Embree's build threads call prism's sphere-bounds callback
 // after the spheres were written and before rtcCommitScene returns, but nothing it can see says
-// so. prism marks those edges itself; in every other build these compile to nothing. (The
-// renderer's own tiles run on std::threads in ThreadSanitizer builds: core/renderer.cpp.)
+// so. prism marks those edges itself; in every other build these compile to nothing. (prism's
+// own parallel loops run on std::threads in ThreadSanitizer builds: parallel_ranges.h.)
 #if defined(__SANITIZE_THREAD__)
 #define PRISM_TSAN 1
 #elif defined(__has_feature)

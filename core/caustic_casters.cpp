@@ -17,8 +17,28 @@ constexpr float kMaxSin2 = 0.5f, kMinSin2 = 1e-12f;
 
 }  // namespace
 
-bool CausticCasters::is_caster(const MaterialDesc& m) {
-  return (m.metallic > 0 && m.roughness <= kMaxMetalRoughness) || (m.has_volume() && m.roughness <= kMaxGlassRoughness);
+bool CausticCasters::is_smooth(float metallic, float roughness, bool volume) {
+  return (metallic > 0 && roughness <= kMaxMetalRoughness) || (volume && roughness <= kMaxGlassRoughness);
+}
+
+// glTF 2.0 §3.9.2: the texture's B and G channels scale the metallic and roughness factors. Most
+// exported assets set both factors to 1 and leave the texture to say where the surface is
+// polished metal, so the factors alone would rule out nearly every textured caster (and count a
+// texture of no metal at all as one). A grid of at most 64 x 64 texels stands for the image.
+bool CausticCasters::is_caster(const SceneDesc& desc, const MaterialDesc& m) {
+  const TextureRef& ref = m.metallic_roughness_texture;
+  if (!ref.present()) return is_smooth(m.metallic, m.roughness, m.has_volume());
+  const ImageDesc& img = desc.images[size_t(desc.textures[size_t(ref.texture)].image)];
+  constexpr int kGrid = 64;
+  const int step_x = std::max(1, img.width / kGrid), step_y = std::max(1, img.height / kGrid);
+  int64_t smooth = 0, seen = 0;
+  for (int y = step_y / 2; y < img.height; y += step_y)
+    for (int x = step_x / 2; x < img.width; x += step_x) {
+      const Rgb t = img.texel(x, y).rgb;
+      smooth += is_smooth(m.metallic * t.z, m.roughness * t.y, m.has_volume());
+      ++seen;
+    }
+  return seen > 0 && smooth * kMinSmoothFraction >= seen;
 }
 
 CausticCasters::CausticCasters(const SceneDesc& desc) {
@@ -29,14 +49,14 @@ CausticCasters::CausticCasters(const SceneDesc& desc) {
   std::vector<Sphere> casters;
   for (const InstanceDesc& inst : desc.instances) {
     for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
-      if (prim.triangle_count() == 0 || !is_caster(desc.material(prim.material))) continue;
+      if (prim.triangle_count() == 0 || !is_caster(desc, desc.material(prim.material))) continue;
       Bounds3 box;
       for (uint32_t i : prim.indices) box.extend(inst.object_to_world.point(prim.positions[i]));
       casters.push_back({(box.lo + box.hi) * 0.5f, 0.5f * length(box.diagonal())});
     }
   }
   for (const SphereDesc& s : desc.spheres)
-    if (is_caster(desc.material(s.material))) casters.push_back({s.center, s.radius});
+    if (is_caster(desc, desc.material(s.material))) casters.push_back({s.center, s.radius});
   std::erase_if(casters,
                 [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
   // The largest first (a stable sort: ties keep scene order), and at most kMaxCasters of them.

@@ -48,16 +48,19 @@ class CasterView {
 class CausticCasters {
  public:
   // A caster is a mesh primitive or analytic sphere whose material has a metal lobe of roughness
-  // factor at most kMaxMetalRoughness, or bounds a refracting volume with roughness at most
-  // kMaxGlassRoughness: the surfaces that focus light into caustics next-event estimation cannot
-  // reach (its shadow rays stop at them). A glossy metal counts too: lit by a small, bright light
-  // (a sun), it throws a blurred caustic that only bounce directions find (docs/PERFORMANCE.md,
-  // session 36: aiming at a gold block of roughness 0.4 cut hdri-textures' error to 0.59x; at 0.6
-  // to 0.85x, and at 0.8 it cost 3%). Thin sheets are not casters: shadow rays cross them
-  // (integrators/sheet_crossing.h), and what they reflect is weak. Positions are world space (the
-  // instance transforms applied); each caster is bounded by a sphere around its box.
+  // at most kMaxMetalRoughness, or bounds a refracting volume with roughness at most
+  // kMaxGlassRoughness (by its factors, or by enough of its texels where a texture scales them):
+  // the surfaces that focus light into caustics next-event estimation cannot reach (its shadow
+  // rays stop at them). A glossy metal counts too: lit by a small, bright light (a sun), it throws
+  // a blurred caustic that only bounce directions find (docs/PERFORMANCE.md, session 36: aiming at
+  // a gold block of roughness 0.4 cut hdri-textures' error to 0.59x; at 0.6 to 0.85x, and at 0.8
+  // it cost 3%). Thin sheets are not casters: shadow rays cross them (integrators/sheet_crossing.h),
+  // and what they reflect is weak. Positions are world space (the instance transforms applied);
+  // each caster is bounded by a sphere around its box.
   static constexpr float kMaxMetalRoughness = 0.5f;
   static constexpr float kMaxGlassRoughness = 0.2f;
+  // Whether a surface point of these values focuses light as a caster does.
+  static bool is_smooth(float metallic, float roughness, bool volume);
   // The largest, by bounding radius, when there are more: each costs every vertex a cone.
   static constexpr int kMaxCasters = CasterView::kMaxCasters;
 
@@ -72,7 +75,11 @@ class CausticCasters {
   // that rise above the surface's tangent plane.
   void view(const Vec3& p, const Vec3& n, CasterView& out) const;
 
-  static bool is_caster(const MaterialDesc& m);
+  // Whether a material's surfaces are casters: with a metallic-roughness texture, when at least
+  // 1 / kMinSmoothFraction of its texels are (aimed directions that meet the rest are not lost,
+  // MIS weighs them, but they seldom lead to a caustic).
+  static bool is_caster(const SceneDesc& desc, const MaterialDesc& m);
+  static constexpr int kMinSmoothFraction = 4;
 
  private:
   // Each caster's bounding sphere, by component for view()'s vectorised loop.

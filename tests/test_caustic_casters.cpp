@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/caustic_casters.h"
 #include "core/constants.h"
@@ -54,9 +55,50 @@ TEST(CausticCasters, AreSmoothOrGlossyMetalAndSmoothGlassPlacedInTheWorld) {
   EXPECT_FALSE(aims_at(casters, Vec3(5, 0, 0)));
   EXPECT_FALSE(aims_at(casters, Vec3(0, 5, 0)));
   EXPECT_FALSE(aims_at(casters, Vec3(-5, 0, -1)));
-  EXPECT_TRUE(CausticCasters::is_caster(desc.material(glass)));
+  EXPECT_TRUE(CausticCasters::is_caster(desc, desc.material(glass)));
   // A thin pane passes light straight on, to shadow rays too: nothing to aim at.
-  EXPECT_FALSE(CausticCasters::is_caster(desc.material(test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, true))));
+  EXPECT_FALSE(CausticCasters::is_caster(desc, desc.material(test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, true))));
+}
+
+// A metal of factors 1 whose metallic-roughness texture (B metallic, G roughness) is `texels`, one
+// row of RGB floats.
+int add_textured_metal(SceneDesc& desc, const std::vector<Rgb>& texels) {
+  ImageDesc img;
+  img.width = int(texels.size());
+  img.height = 1;
+  img.channels = 3;
+  for (const Rgb& t : texels) img.texels.insert(img.texels.end(), {t.x, t.y, t.z});
+  desc.images.push_back(img);
+  TextureDesc tex;
+  tex.image = int(desc.images.size()) - 1;
+  desc.textures.push_back(tex);
+  const int m = add_metal(desc, 1.0f);
+  desc.materials[size_t(m)].metallic_roughness_texture.texture = int(desc.textures.size()) - 1;
+  return m;
+}
+
+TEST(CausticCasters, TexturedMetalIsJudgedByItsTexels) {
+  SceneDesc desc;
+  const Rgb polished(0, 0.1f, 1), rough(0, 0.9f, 1), polished_dielectric(0, 0.1f, 0);
+  auto caster = [&](const std::vector<Rgb>& texels) {
+    return CausticCasters::is_caster(desc, desc.material(add_textured_metal(desc, texels)));
+  };
+  // Roughness factor 1, but the texture polishes it: a caster; and the reverse is none.
+  EXPECT_TRUE(caster({polished, polished}));
+  EXPECT_FALSE(caster({rough, rough}));
+  // Metallic factor 1, but the texture says no metal anywhere.
+  EXPECT_FALSE(caster({polished_dielectric, polished_dielectric}));
+  // A quarter of the texels polished metal is enough; a fifth is not.
+  EXPECT_TRUE(caster({polished, rough, rough, rough}));
+  EXPECT_FALSE(caster({polished, rough, rough, rough, rough}));
+  // The texture scales the factors: roughness 0.6 x 1 is past the limit (0.5), 0.6 x 0.8 is not.
+  const int scaled = add_textured_metal(desc, {Rgb(0, 0.6f, 1)});
+  EXPECT_FALSE(CausticCasters::is_caster(desc, desc.material(scaled)));
+  desc.materials[size_t(scaled)].roughness = 0.8f;
+  EXPECT_TRUE(CausticCasters::is_caster(desc, desc.material(scaled)));
+  // The scene finds it as the factors alone would not.
+  test::add_sphere(desc, Vec3(0, 0, 5), 0.5f, add_textured_metal(desc, {polished}));
+  EXPECT_EQ(CausticCasters(desc).size(), 1u);
 }
 
 TEST(CasterView, TakesConesThatAreNarrowAndAboveTheSurface) {

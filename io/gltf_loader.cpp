@@ -25,8 +25,12 @@ bool is_supported_gltf_extension(const std::string& name) {
                                                    "KHR_materials_ior", "KHR_materials_volume",
                                                    "KHR_lights_punctual", "KHR_texture_transform",
                                                    "KHR_materials_specular"};
-  return kSupported.count(name) > 0;
+  return kSupported.count(name) > 0 || is_metadata_gltf_extension(name);
 }
+
+// XMP metadata (authoring tool, licence, ...) attached to the asset or any of its objects: nothing
+// in it changes what a render shows, so it needs no support and no warning.
+bool is_metadata_gltf_extension(const std::string& name) { return name == "KHR_xmp" || name == "KHR_xmp_json_ld"; }
 
 namespace {
 
@@ -425,7 +429,7 @@ class Converter {
           if (!(d > 0)) fail(where, "KHR_materials_volume attenuationDistance must be positive");
           out.attenuation_distance = float(d);  // may round to +inf: no absorption
         }
-      } else {
+      } else if (!is_metadata_gltf_extension(name)) {
         diag_.warn("extension " + name + " is not supported yet and is ignored");
       }
     }

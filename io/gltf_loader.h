@@ -21,5 +21,7 @@ SceneDesc load_gltf_from_memory(const std::vector<unsigned char>& bytes, const s
 
 // Whether prism implements glTF extension `name` (anything else in extensionsRequired is an error).
 bool is_supported_gltf_extension(const std::string& name);
+// Whether glTF extension `name` only carries metadata, which rendering has no use for.
+bool is_metadata_gltf_extension(const std::string& name);
 
 }  // namespace prism

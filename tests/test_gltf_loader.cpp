@@ -188,6 +188,18 @@ TEST_F(GltfLoaderTest, UnsupportedFeaturesAreWarnedOnce) {
   EXPECT_FALSE(diag_.contains("alphaMode"));  // BLEND is supported
 }
 
+// XMP metadata (KHR_xmp_json_ld; KHR_xmp is its older name) changes nothing a render shows: it is
+// accepted, even as required, without a warning.
+TEST_F(GltfLoaderTest, MetadataExtensionsAreAcceptedSilently) {
+  GltfWriter w;
+  w.doc()["extensionsUsed"] = {"KHR_xmp_json_ld", "KHR_xmp"};
+  w.doc()["extensionsRequired"] = {"KHR_xmp_json_ld"};
+  w.doc()["materials"] = json::array({{{"extensions", {{"KHR_xmp_json_ld", {{"packet", 0}}}}}}});
+  w.set_scene_nodes({w.add_node({{"mesh", w.add_mesh(w.add_positions(kTriangle), -1, 0)}})});
+  EXPECT_EQ(load(w).triangle_count(), 1u);
+  EXPECT_TRUE(diag_.lines().empty()) << diag_.lines().front();
+}
+
 TEST_F(GltfLoaderTest, BrokenFilesGiveClearErrors) {
   struct Case {
     const char* name;

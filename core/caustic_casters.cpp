@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "core/constants.h"
 #include "core/frame.h"
@@ -47,16 +49,24 @@ CausticCasters::CausticCasters(const SceneDesc& desc) {
     float radius;
   };
   std::vector<Sphere> casters;
+  // Each material judged once (a textured one reads up to 64 x 64 texels), however many primitives
+  // and spheres share it; the last slot is the default material's.
+  std::vector<int8_t> judged(desc.materials.size() + 1, -1);
+  const auto caster = [&](int material) {
+    const size_t slot = material >= 0 && size_t(material) < desc.materials.size() ? size_t(material) : judged.size() - 1;
+    if (judged[slot] < 0) judged[slot] = is_caster(desc, desc.material(material)) ? 1 : 0;
+    return judged[slot] == 1;
+  };
   for (const InstanceDesc& inst : desc.instances) {
     for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
-      if (prim.triangle_count() == 0 || !is_caster(desc, desc.material(prim.material))) continue;
+      if (prim.triangle_count() == 0 || !caster(prim.material)) continue;
       Bounds3 box;
       for (uint32_t i : prim.indices) box.extend(inst.object_to_world.point(prim.positions[i]));
       casters.push_back({(box.lo + box.hi) * 0.5f, 0.5f * length(box.diagonal())});
     }
   }
   for (const SphereDesc& s : desc.spheres)
-    if (is_caster(desc, desc.material(s.material))) casters.push_back({s.center, s.radius});
+    if (caster(s.material)) casters.push_back({s.center, s.radius});
   std::erase_if(casters,
                 [](const Sphere& s) { return !(s.radius > 0) || !std::isfinite(s.radius) || !is_finite(s.center); });
   // The largest first (a stable sort: ties keep scene order), and at most kMaxCasters of them.

@@ -11,7 +11,7 @@ Distribution2D::Distribution2D(int width, int height,
   resize_on_huge_pages(cdfs_, size_t(height_) * (size_t(width_) + 1));
   resize_on_huge_pages(guides_, size_t(height_) * (slots_ + 1));
   std::vector<double> row_sums(size_t(height_), 0.0);
-  parallel_ranges(height_, 1, 0, [&](int first, int end) {
+  parallel_ranges(height_, 0, [&](int first, int end) {
     std::vector<double> row(static_cast<size_t>(width_));
     for (int y = first; y != end; ++y) {
       row_weights(y, row);

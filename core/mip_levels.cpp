@@ -50,7 +50,7 @@ int first_source(int i, int n, int m) { return n == 2 * m ? 2 * i : int(int64_t(
 // `store(texel index, values)`.
 template <int C, typename Read, typename Store>
 void halve(int width, int height, int out_width, int out_height, const Read& read, const Store& store) {
-  parallel_ranges(out_height, 1, 0, [&](int first, int end) {
+  parallel_ranges(out_height, 0, [&](int first, int end) {
     for (int y = first; y != end; ++y) {
       const int y0 = first_source(y, height, out_height), y1 = first_source(y + 1, height, out_height);
       for (int x = 0; x < out_width; ++x) {

@@ -110,7 +110,7 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
 
   // ThreadSanitizer builds hand the tiles to std::threads, settings.threads of them (parallel_ranges.h).
   auto run_pass = [&] {
-    parallel_ranges(tiles_x * tiles_y, 1, settings.threads, [&](int first, int end) {
+    parallel_ranges(tiles_x * tiles_y, settings.threads, [&](int first, int end) {
       for (int t = first; t < end; ++t) render_tile(t);
     });
   };

@@ -54,39 +54,92 @@ Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m) {
   return e * Rgb(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 
+Emitters::Emitter Emitters::make_triangle(const InstanceDesc& inst, int instance, const PrimitiveDesc& prim,
+                                           int primitive, uint32_t t) const {
+  const MaterialDesc& mat = desc_->material(prim.material);
+  Emitter e;
+  e.instance = instance;
+  e.primitive = primitive;
+  e.index = t;
+  e.material = prim.material;
+  e.p0 = world_corner(inst, prim, t, 0);
+  e.p1 = world_corner(inst, prim, t, 1);
+  e.p2 = world_corner(inst, prim, t, 2);
+  if (inst.object_to_world.flips_handedness()) {  // keep the front face counter-clockwise in world space
+    std::swap(e.p1, e.p2);
+    std::swap(e.corner[1], e.corner[2]);
+  }
+  const FaceNormal face = face_normal(e.p0, e.p1, e.p2);
+  e.area = face.area;
+  e.normal = face.normal;
+  e.longest_edge2 = std::max({length_squared(e.p1 - e.p0), length_squared(e.p2 - e.p1), length_squared(e.p0 - e.p2)});
+  e.textured = mat.emissive_texture.present();
+  e.double_sided = mat.double_sided;
+  return e;
+}
+
+// Two triangles make a quad when they share an edge (the same world-space corners, run in opposite
+// directions, so the two face the same way) and the corner of b off that edge completes a
+// parallelogram with a's three, to within 1e-5 of the longest edge (float corners written out by
+// an exporter are off by about 1e-7). Half B's points are placed on b's own corners, and
+// quad_slack widens their error bound, so a shadow ray never ends beyond the real surface.
+bool Emitters::merge_into_quad(Emitter& a, const Emitter& b) {
+  if (!(a.area > 0 && b.area > 0) || dot(a.normal, b.normal) <= 0) return false;
+  const Vec3 pa[3] = {a.p0, a.p1, a.p2}, pb[3] = {b.p0, b.p1, b.p2};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      // a's edge i -> i + 1 is b's edge j + 1 -> j.
+      if (!(pa[i] == pb[(j + 1) % 3] && pa[(i + 1) % 3] == pb[j])) continue;
+      const Vec3 o = pa[(i + 2) % 3], s1 = pa[i], s2 = pa[(i + 1) % 3], d = pb[(j + 2) % 3];
+      const float slack = length(o + d - s1 - s2);
+      const float longest2 = std::max(a.longest_edge2, b.longest_edge2);
+      if (!(slack * slack <= 1e-10f * longest2)) return false;
+      Emitter q = a;
+      q.quad = true;
+      q.index_b = b.index;
+      // Half A is (o, s1, s2), a's corners turned to start at o; half B is (s1, d, s2).
+      q.p0 = o;
+      q.p1 = s1;
+      q.p2 = s2;
+      q.p3 = d;
+      q.quad_slack = slack;
+      const uint8_t* ca = a.corner;
+      const uint8_t* cb = b.corner;
+      const uint8_t corners[6] = {ca[(i + 2) % 3], ca[i], ca[(i + 1) % 3], cb[(j + 1) % 3], cb[(j + 2) % 3], cb[j]};
+      std::copy(corners, corners + 6, q.corner);
+      q.area = 2 * face_normal(o, s1, s2).area;  // the parallelogram the samples are drawn in
+      if (!(q.area > 0) || !std::isfinite(q.area)) return false;
+      q.longest_edge2 = std::max({length_squared(s1 - o), length_squared(s2 - o), length_squared(s1 - s2)});
+      a = q;
+      return true;
+    }
+  return false;
+}
+
 Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how_(how) {
   std::vector<double> power;
   instance_prim_base_.resize(desc.instances.size(), 0);
   for (size_t i = 0; i < desc.instances.size(); ++i) {
     const InstanceDesc& inst = desc.instances[i];
     const MeshDesc& mesh = desc.meshes[inst.mesh];
-    instance_prim_base_[i] = static_cast<int>(prim_emitter_base_.size());
-    const float flip = inst.object_to_world.flips_handedness() ? -1.0f : 1.0f;
+    instance_prim_base_[i] = static_cast<int>(prim_triangle_base_.size());
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const PrimitiveDesc& prim = mesh.primitives[p];
       const MaterialDesc& mat = desc.material(prim.material);
       if (!mat.is_emissive() || prim.triangle_count() == 0) {
-        prim_emitter_base_.push_back(-1);
+        prim_triangle_base_.push_back(-1);
         continue;
       }
-      prim_emitter_base_.push_back(static_cast<int>(emitters_.size()));
+      prim_triangle_base_.push_back(static_cast<int>(triangle_emitter_.size()));
       const float radiance = luminance(mean_emission(desc, mat)) * (mat.double_sided ? 2.0f : 1.0f);
-      for (size_t t = 0; t < prim.triangle_count(); ++t) {
-        Emitter e;
-        e.instance = static_cast<int>(i);
-        e.primitive = static_cast<int>(p);
-        e.index = static_cast<uint32_t>(t);
-        e.material = prim.material;
-        e.p0 = world_corner(inst, prim, t, 0);
-        e.p1 = world_corner(inst, prim, t, 1);
-        e.p2 = world_corner(inst, prim, t, 2);
-        if (flip < 0) std::swap(e.p1, e.p2);  // keep the front face counter-clockwise in world space
-        const FaceNormal face = face_normal(e.p0, e.p1, e.p2);
-        e.area = face.area;
-        e.normal = face.normal;
-        e.longest_edge2 = std::max({length_squared(e.p1 - e.p0), length_squared(e.p2 - e.p1), length_squared(e.p0 - e.p2)});
-        e.textured = mat.emissive_texture.present();
-        e.double_sided = mat.double_sided;
+      const auto count = static_cast<uint32_t>(prim.triangle_count());
+      for (uint32_t t = 0; t < count; ++t) {
+        Emitter e = make_triangle(inst, int(i), prim, int(p), t);
+        triangle_emitter_.push_back(static_cast<int>(emitters_.size()));
+        if (t + 1 < count && merge_into_quad(e, make_triangle(inst, int(i), prim, int(p), t + 1))) {
+          triangle_emitter_.push_back(static_cast<int>(emitters_.size()));
+          ++t;
+        }
         emitters_.push_back(e);
         power.push_back(double(radiance) * e.area * kPi);
       }
@@ -131,6 +184,7 @@ void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& powe
       b.box.extend(e.p0);
       b.box.extend(e.p1);
       b.box.extend(e.p2);
+      if (e.quad) b.box.extend(e.p3);
       b.normals = {e.normal, 1.0f};
       b.two_sided = e.double_sided;
     } else if (i < emitters_.size()) {
@@ -169,6 +223,7 @@ std::optional<Emitters::Pick> Emitters::pick_first(float u) const {
   float remapped = 0;
   if (!tree_pays()) {
     if (pick_.size() == 0) return std::nullopt;
+    if (pick_.size() == 1) return Pick{0, 1.0f, std::min(u, kOneMinusEpsilon)};  // one light: no choice to make
     const size_t i = pick_.sample(u, &remapped);
     return Pick{i, pick_.pmf(i), remapped};
   }
@@ -212,11 +267,6 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
   if (portals_.empty()) return pick * map_pdf;
   const EnvironmentPortals::View view = portals_.view(ref);
   return pick * environment_direction_pdf(&view, ref, w, map_pdf);
-}
-
-int Emitters::triangle_base(int instance, int primitive) const {
-  if (prim_emitter_base_.empty()) return -1;
-  return prim_emitter_base_[instance_prim_base_[instance] + primitive];
 }
 
 // The emitter is chosen by u.x, which rescaled within the emitter's share then places the point:
@@ -301,28 +351,61 @@ float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p
 // spent there, and the pdf is 0 to match.
 bool Emitters::faces(const Emitter& e, float plane_distance) { return e.double_sided || plane_distance > 0; }
 
-// A triangle is sampled uniformly in the solid angle it subtends (Arvo 1995) when ref is closer to
-// its plane than its longest edge, where the 1 / d^2 and cosine of area sampling vary most across
-// it (Cycles' rule). Farther, the two densities nearly agree and area sampling is cheaper.
-std::optional<SphericalTriangle> Emitters::solid_angle_sampled(const Emitter& e, const Vec3& ref, float plane_distance) {
-  if (!(e.longest_edge2 > plane_distance * plane_distance)) return std::nullopt;
-  SphericalTriangle st(ref, e.p0, e.p1, e.p2);
-  if (!(st.solid_angle() >= kMinSolidAngle && st.solid_angle() <= kMaxSolidAngle)) return std::nullopt;
-  return st;
+// Half A's spherical triangle and, for a quad, half B's, seen from ref: the quad's solid angle is
+// theirs together, and a direction is drawn in one of them in proportion to its share.
+struct Emitters::SolidAngleView {
+  SolidAngleView(const Emitter& e, const Vec3& ref)
+      : SolidAngleView(e, ref, SphericalTriangle::see(ref, e.p0), SphericalTriangle::see(ref, e.p1),
+                       SphericalTriangle::see(ref, e.p2)) {}
+  SolidAngleView(const Emitter& e, const Vec3& ref, const SphericalTriangle::Corner& c0,
+                 const SphericalTriangle::Corner& c1, const SphericalTriangle::Corner& c2)
+      : a(ref, c0, c1, c2) {
+    if (e.quad) b.emplace(ref, c1, SphericalTriangle::see(ref, e.p3), c2);
+    solid_angle = a.solid_angle() + (b ? b->solid_angle() : 0.0f);
+  }
+  // Solid angles under kMinSolidAngle or over kMaxSolidAngle are left to area sampling.
+  bool pays() const { return solid_angle >= kMinSolidAngle && solid_angle <= kMaxSolidAngle; }
+
+  SphericalTriangle a;
+  std::optional<SphericalTriangle> b;
+  float solid_angle = 0;
+};
+
+// A triangle or quad is sampled uniformly in the solid angle it subtends (Arvo 1995) when ref is
+// closer to its plane than a half's longest edge, where the 1 / d^2 and cosine of area sampling vary
+// most across it (Cycles' rule), and SolidAngleView::pays(). Farther, the two densities nearly
+// agree and area sampling is cheaper.
+bool Emitters::near_enough(const Emitter& e, float plane_distance) {
+  return e.longest_edge2 > plane_distance * plane_distance;
 }
 
 EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const {
   const float plane_distance = dot(ref - e.p0, e.normal);
   if (!(e.area > 0) || !faces(e, plane_distance)) return {};
-  if (const auto st = solid_angle_sampled(e, ref, plane_distance)) {
-    const std::optional<Barycentrics> b = st->sample(u);
-    if (!b) return {};
-    EmitterSample s = triangle_point(e, *b);
-    s.pdf = 1.0f / st->solid_angle();
-    return s;
+  if (near_enough(e, plane_distance)) {
+    const SolidAngleView view(e, ref);
+    if (view.pays()) {
+      // u.x chooses the half and, rescaled within its share, places the point (as in sample()).
+      const float share_a = view.a.solid_angle() / view.solid_angle;
+      const bool in_b = view.b && u.x >= share_a;
+      if (view.b) u.x = std::min(in_b ? (u.x - share_a) / (1 - share_a) : u.x / share_a, kOneMinusEpsilon);
+      const std::optional<Barycentrics> b = (in_b ? *view.b : view.a).sample(u);
+      if (!b) return {};
+      EmitterSample s = triangle_point(e, in_b ? 1 : 0, *b);
+      s.pdf = 1.0f / view.solid_angle;
+      return s;
+    }
   }
-  const Vec2 b = sample_uniform_triangle(u);
-  EmitterSample s = triangle_point(e, {b.x, b.y, 1.0f - b.x - b.y});
+  // By area: a quad's unit square maps linearly onto it, half A below the diagonal u + v = 1.
+  EmitterSample s;
+  if (!e.quad) {
+    const Vec2 b = sample_uniform_triangle(u);
+    s = triangle_point(e, 0, {b.x, b.y, 1.0f - b.x - b.y});
+  } else if (u.x + u.y <= 1) {
+    s = triangle_point(e, 0, {1.0f - u.x - u.y, u.x, u.y});
+  } else {
+    s = triangle_point(e, 1, {1.0f - u.y, u.x + u.y - 1.0f, 1.0f - u.x});
+  }
   s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
   return s;
 }
@@ -330,27 +413,33 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 
 float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {
   const float plane_distance = dot(ref - e.p0, e.normal);
   if (!faces(e, plane_distance)) return 0;
-  if (const auto st = solid_angle_sampled(e, ref, plane_distance)) return 1.0f / st->solid_angle();
+  if (near_enough(e, plane_distance)) {
+    const SolidAngleView view(e, ref);
+    if (view.pays()) return 1.0f / view.solid_angle;
+  }
   return area_to_solid_angle(1.0f / e.area, ref, p, n);
 }
 
-EmitterSample Emitters::triangle_point(const Emitter& e, const Barycentrics& b) const {
-  const float b0 = b.b0, b1 = b.b1, b2 = b.b2;
+EmitterSample Emitters::triangle_point(const Emitter& e, int half, const Barycentrics& b) const {
+  const Vec3& c0 = half == 0 ? e.p0 : e.p1;
+  const Vec3& c1 = half == 0 ? e.p1 : e.p3;
+  const Vec3& c2 = e.p2;
   EmitterSample s;
-  s.p = e.p0 * b0 + e.p1 * b1 + e.p2 * b2;
-  s.p_error = (abs(e.p0 * b0) + abs(e.p1 * b1) + abs(e.p2 * b2)) * kHitRelativeError;
+  s.p = c0 * b.b0 + c1 * b.b1 + c2 * b.b2;
+  s.p_error = (abs(c0 * b.b0) + abs(c1 * b.b1) + abs(c2 * b.b2)) * kHitRelativeError + Vec3(e.quad_slack);
   s.n = e.normal;
   s.material = e.material;
   if (!e.textured) return s;
   const InstanceDesc& inst = desc_->instances[e.instance];
   const PrimitiveDesc& prim = desc_->meshes[inst.mesh].primitives[e.primitive];
   if (!prim.uvs.empty()) {
-    // Barycentrics refer to the file's vertex order; undo the swap made for mirrored instances.
-    const bool flipped = inst.object_to_world.flips_handedness();
-    const Vec2& t0 = prim.uvs[prim.indices[3 * e.index]];
-    const Vec2& t1 = prim.uvs[prim.indices[3 * e.index + (flipped ? 2 : 1)]];
-    const Vec2& t2 = prim.uvs[prim.indices[3 * e.index + (flipped ? 1 : 2)]];
-    s.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+    // The half's corners in the file's order of its triangle's vertices (see Emitter::corner).
+    const size_t first = 3 * size_t(half == 0 ? e.index : e.index_b);
+    const uint8_t* corner = e.corner + 3 * half;
+    const Vec2& t0 = prim.uvs[prim.indices[first + corner[0]]];
+    const Vec2& t1 = prim.uvs[prim.indices[first + corner[1]]];
+    const Vec2& t2 = prim.uvs[prim.indices[first + corner[2]]];
+    s.uv = {t0.x * b.b0 + t1.x * b.b1 + t2.x * b.b2, t0.y * b.b0 + t1.y * b.b1 + t2.y * b.b2};
   }
   return s;
 }

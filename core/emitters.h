@@ -1,4 +1,4 @@
-// Emitters: every light of a scene (emissive triangles and spheres as area lights, punctual lights
+// Emitters: every light of a scene (emissive triangles, quads and spheres as area lights, punctual
 // and the environment), chosen by a light tree or in proportion to emitted power.
 #pragma once
 
@@ -48,7 +48,9 @@ class Emitters {
   explicit Emitters(const SceneDesc& desc, LightSampling how = LightSampling::Tree);
 
   bool empty() const { return pick_.size() == 0; }
-  size_t size() const { return emitters_.size(); }  // area emitters (triangles and spheres)
+  // Area emitters: spheres, triangles, and quads (two triangles of a primitive, one after the
+  // other, that share an edge and form a parallelogram: one light, sampled as a whole).
+  size_t size() const { return emitters_.size(); }
 
   // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
   // (zero: none); pdf 0 when nothing can be sampled. u chooses the emitter and the point on it;
@@ -64,8 +66,12 @@ class Emitters {
   // Solid-angle pdf of sample() choosing point p (normal n) on emitter `index` from `ref`.
   float pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const;
 
-  // First emitter index of triangle primitive (instance, primitive) or -1: emitter = base + triangle.
-  int triangle_base(int instance, int primitive) const;
+  // Emitter index of a triangle of primitive (instance, primitive), or -1 when it emits nothing.
+  int triangle_emitter(int instance, int primitive, uint32_t triangle) const {
+    if (prim_triangle_base_.empty()) return -1;
+    const int base = prim_triangle_base_[size_t(instance_prim_base_[size_t(instance)] + primitive)];
+    return base >= 0 ? triangle_emitter_[size_t(base) + triangle] : -1;
+  }
   // Emitter index of sphere `s`, or -1.
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }
   const EnvironmentLight& environment() const { return environment_; }
@@ -85,24 +91,38 @@ class Emitters {
  private:
   struct Emitter {
     bool sphere = false;
+    bool quad = false;   // p0 + u (p1 - p0) + v (p2 - p0) over the unit square: halves A and B
     int instance = -1;   // triangles: instance and primitive, to look up vertex attributes
     int primitive = -1;
-    uint32_t index = 0;  // triangle within the primitive, or sphere index
+    uint32_t index = 0;  // triangle (a quad's half A) within the primitive, or sphere index
+    uint32_t index_b = 0;  // quads: the triangle that is half B
     int material = -1;
-    Vec3 p0, p1, p2;     // triangles: world-space vertices, front face by winding x handedness
-    Vec3 normal;         // triangles: unit front-face normal
+    // World-space corners, front face counter-clockwise (winding x handedness). Half A is
+    // (p0, p1, p2); a quad's half B is (p1, p3, p2), p3 its own fourth corner, within quad_slack
+    // of p1 + p2 - p0.
+    Vec3 p0, p1, p2, p3;
+    float quad_slack = 0;
+    uint8_t corner[6] = {0, 1, 2, 0, 1, 2};  // the file's corner (0-2) of each half's corners, A then B
+    Vec3 normal;         // triangles and quads: unit front-face normal
     float area = 0;
-    float longest_edge2 = 0;  // triangles: squared length of the longest edge
+    float longest_edge2 = 0;  // triangles and quads: squared length of a half's longest edge
     bool textured = false;  // the emission varies over the surface: uvs are needed
-    bool double_sided = false;  // triangles: emits from the back face too
+    bool double_sided = false;  // triangles and quads: emits from the back face too
   };
+  Emitter make_triangle(const InstanceDesc& inst, int instance, const PrimitiveDesc& prim, int primitive,
+                        uint32_t t) const;
+  // Makes `a` the quad of a and the triangle b that follows it, when they form one.
+  static bool merge_into_quad(Emitter& a, const Emitter& b);
+  // The spherical triangles a triangle or quad is sampled by near ref, where near_enough and it pays.
+  struct SolidAngleView;
+  static bool near_enough(const Emitter& e, float plane_distance);
 
-  // Triangles: by solid angle when that pays (see solid_angle_sampled), else by area.
+  // Triangles and quads: by solid angle when that pays (see solid_angle_sampled), else by area.
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
   // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);
-  static std::optional<SphericalTriangle> solid_angle_sampled(const Emitter& e, const Vec3& ref, float plane_distance);
-  EmitterSample triangle_point(const Emitter& e, const Barycentrics& b) const;
+  // The point at barycentrics b of half A (0) or B (1).
+  EmitterSample triangle_point(const Emitter& e, int half, const Barycentrics& b) const;
   float triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
   EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;
   float sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
@@ -136,8 +156,9 @@ class Emitters {
   std::vector<int> top_slot_;  // light -> its slot in top_, -1 for lights in the tree
   // A tree that is one leaf (one light, or lights it cannot tell apart) chooses by power alone.
   bool tree_pays() const { return how_ == LightSampling::Tree && tree_.depth() > 0; }
-  std::vector<int> instance_prim_base_;  // per instance: offset into prim_emitter_base_
-  std::vector<int> prim_emitter_base_;   // per (instance, primitive): first emitter or -1
+  std::vector<int> instance_prim_base_;   // per instance: offset into prim_triangle_base_
+  std::vector<int> prim_triangle_base_;   // per (instance, primitive): offset into triangle_emitter_, or -1
+  std::vector<int> triangle_emitter_;     // per emissive triangle: its emitter
   std::vector<int> sphere_emitter_;
   EnvironmentLight environment_;
   // Where a scene has thin glass sheets, the environment is sampled through them as well as by

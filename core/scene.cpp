@@ -519,8 +519,7 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
   hit.material = prim.material;
   hit.object = instance;
   hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
-  const int base = emitters_.triangle_base(instance, primitive);
-  hit.emitter = base >= 0 ? base + static_cast<int>(rh.hit.primID) : -1;
+  hit.emitter = emitters_.triangle_emitter(instance, primitive, rh.hit.primID);
 }
 
 void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {

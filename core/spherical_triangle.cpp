@@ -5,23 +5,25 @@
 
 namespace prism {
 
-SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
-  const Vec3 d0 = p0 - ref, d1 = p1 - ref, d2 = p2 - ref;
-  const float l0 = length(d0), l1 = length(d1), l2 = length(d2);
+SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2)
+    : SphericalTriangle(ref, see(ref, p0), see(ref, p1), see(ref, p2)) {}
+
+// Every vector is scaled by reciprocals of single distances (Corner), never of a product of them:
+// the product of three distances overflows a float beyond ~1e12 and underflows below ~1e-12.
+SphericalTriangle::SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2) {
+  const float l0 = c0.distance, l1 = c1.distance, l2 = c2.distance;
   if (!(l0 > 0 && l1 > 0 && l2 > 0)) return;  // ref on a corner
-  // Every vector is scaled by reciprocals of single distances, never of a product of them: the
-  // product of three distances overflows a float beyond ~1e12 and underflows below ~1e-12.
-  const float r0 = 1.0f / l0, r1 = 1.0f / l1, r2 = 1.0f / l2;
-  a_ = d0 * r0;
-  b_ = d1 * r1;
-  c_ = d2 * r2;
+  const float r1 = c1.inverse_distance, r2 = c2.inverse_distance;
+  a_ = c0.dir;
+  b_ = c1.dir;
+  c_ = c2.dir;
   // The plane intersection in sample() is invariant to a common scale of its three vectors: scaled
   // by the longest distance, they stay within [-2, 2].
-  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const Vec3 e1 = c1.p - c0.p, e2 = c2.p - c0.p;
   const float scale = 1.0f / std::max({l0, l1, l2});
   e1_ = e1 * scale;
   e2_ = e2 * scale;
-  o_ = (ref - p0) * scale;
+  o_ = (ref - c0.p) * scale;
   // The triple product of the corner directions is d0 . (e1 x e2) / (l0 l1 l2): no cancellation
   // between the long vectors of a far, small triangle. |e1| / l1 <= 1 + l0 / l1, so each factor
   // stays in range unless the distances differ by ~1e19.

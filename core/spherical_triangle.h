@@ -18,6 +18,23 @@ class SphericalTriangle {
  public:
   SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
+  // A corner seen from ref: where it is, its distance and the unit direction to it. Triangles that
+  // share corners (a quad's two halves) share these too.
+  struct Corner {
+    Vec3 p, dir;
+    float distance = 0, inverse_distance = 0;
+  };
+  static Corner see(const Vec3& ref, const Vec3& p) {
+    Corner c;
+    c.p = p;
+    const Vec3 d = p - ref;
+    c.distance = length(d);
+    c.inverse_distance = 1.0f / c.distance;
+    c.dir = d * c.inverse_distance;
+    return c;
+  }
+  SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2);
+
   // Two corners seen further apart than this cosine (120 degrees), more so than the other pairs,
   // are relabelled b and c for sampling.
   static constexpr float kRelabelCos = -0.5f;

@@ -11,6 +11,15 @@
 
 namespace prism::test {
 
+double chi2(const std::vector<double>& observed, const std::vector<double>& expected) {
+  double x = 0;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    const double d = observed[i] - expected[i];
+    x += d * d / expected[i];
+  }
+  return x;
+}
+
 double chi2_critical(int dof) {
   const double z = 4.265, k = dof;
   const double t = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));

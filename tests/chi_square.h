@@ -4,6 +4,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/vec3.h"
 
@@ -20,6 +21,9 @@ struct DirectionSample {
 // the 1e-5 significance critical value. Also checks that each sample's pdf matches pdf(wi).
 std::string chi_square_sphere(const std::function<std::optional<DirectionSample>(float, Vec2)>& sample,
                               const std::function<float(const Vec3&)>& pdf, int samples = 400000);
+
+// Pearson's statistic of counts observed in bins against those expected.
+double chi2(const std::vector<double>& observed, const std::vector<double>& expected);
 
 // Chi-square critical value at significance 1e-5 (Wilson-Hilferty approximation).
 double chi2_critical(int dof);

@@ -79,14 +79,16 @@ TEST(GeometryExtremes, DegenerateTrianglesAreNeverHitNorLights) {
   }
   EXPECT_EQ(hits, 0) << "of " << aims.size() * 20 << " rays aimed at points on degenerate triangles";
   const Emitters& emitters = scene.emitters();
-  const int base = emitters.triangle_base(degenerate, 0);
-  ASSERT_GE(base, 0);
-  for (int t = 0; t < 1500; ++t) {
-    EXPECT_EQ(emitters.power_pick_probability(base + t), 0.0f);
-    EXPECT_EQ(emitters.pdf(base + t, Vec3(0, 0, 5), Vec3(), aims[size_t(t)] - scene.origin(), Vec3(0, 0, 1)), 0.0f);
+  for (uint32_t t = 0; t < 1500; ++t) {
+    const int emitter = emitters.triangle_emitter(degenerate, 0, t);
+    ASSERT_GE(emitter, 0);
+    EXPECT_EQ(emitters.power_pick_probability(emitter), 0.0f);
+    EXPECT_EQ(emitters.pdf(emitter, Vec3(0, 0, 5), Vec3(), aims[t] - scene.origin(), Vec3(0, 0, 1)), 0.0f);
   }
-  // The quad's two triangles share all the power.
-  EXPECT_FLOAT_EQ(emitters.power_pick_probability(base + 1500) + emitters.power_pick_probability(base + 1501), 1.0f);
+  // The quad (its two triangles one emitter) has all the power.
+  const int quad = emitters.triangle_emitter(degenerate + 1, 0, 0);
+  EXPECT_EQ(emitters.triangle_emitter(degenerate + 1, 0, 1), quad);
+  EXPECT_FLOAT_EQ(emitters.power_pick_probability(quad), 1.0f);
 }
 
 // The same, rendered: a sunlit plane with 750 bright degenerate triangles lying in it and 750

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/arctangent.h"
+
 namespace prism {
 
 SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2)
@@ -31,7 +33,7 @@ SphericalTriangle::SphericalTriangle(const Vec3& ref, const Corner& c0, const Co
   // Van Oosterom and Strackee (IEEE TBME 1983): tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
   const float ab = dot(a_, b_), bc = dot(b_, c_), ca = dot(c_, a_);
   const float denominator = 1.0f + ab + bc + ca;
-  solid_angle_ = 2.0f * std::atan2(std::abs(det_), denominator);
+  solid_angle_ = 2.0f * atan2_fast(std::abs(det_), denominator);
   if (!std::isfinite(solid_angle_)) solid_angle_ = 0;
   // sample() divides by 1 + a.b and draws along the arcs from a to c and from b: in a triangle that
   // fills nearly a hemisphere two corners are seen nearly opposite, and that pair must be (b, c),

@@ -192,7 +192,7 @@ void BM_EmitterSample(benchmark::State& state) {
 }
 BENCHMARK(BM_EmitterSample)->Arg(0)->Arg(1);
 
-// From the top of the left wall, 5 cm under the light's plane: the light's triangles are sampled
+// From the top of the left wall, 5 cm under the light's plane: the light (one quad) is sampled
 // by solid angle there.
 void BM_EmitterSampleNearLight(benchmark::State& state) {
   const Scene& scene = cornell_box(light_sampler_argument(state));

@@ -187,6 +187,41 @@ TEST(Sampling, UniformTriangleMatchesArea) {
   EXPECT_LT(chi2(counts, expected), chi2_critical(k * k - 1));
 }
 
+TEST(Sampling, BilinearMatchesItsDensity) {
+  // Corner weights even, skewed, with zeros, and nearly all on one corner; 8 x 8 bins against the
+  // density integrated on 4 x 4 points each.
+  const float cases[][4] = {{1, 1, 1, 1}, {1, 2, 3, 4}, {0, 1, 0, 2}, {5, 0, 0, 0}, {1e-3f, 1, 1, 1}};
+  for (const auto& w : cases) {
+    constexpr int k = 8, sub = 4, n = 200000;
+    std::vector<double> counts(k * k, 0), expected(k * k, 0);
+    double integral = 0;
+    for (int i = 0; i < k * sub; ++i)
+      for (int j = 0; j < k * sub; ++j) {
+        const double d = bilinear_density({(i + 0.5f) / (k * sub), (j + 0.5f) / (k * sub)}, w) / (k * sub * k * sub);
+        expected[size_t((j / sub) * k + i / sub)] += n * d;
+        integral += d;
+      }
+    EXPECT_NEAR(integral, 1.0, 1e-5);
+    Pcg32 rng(3, 4);
+    for (int s = 0; s < n; ++s) {
+      const Vec2 p = sample_bilinear({rng.next_float(), rng.next_float()}, w);
+      ASSERT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1) << p.x << " " << p.y;
+      counts[size_t(int(p.y * k) * k + int(p.x * k))] += 1;
+    }
+    // Bins the density leaves empty get none (pooled out of the statistic).
+    std::vector<double> observed, wanted;
+    for (size_t b = 0; b < counts.size(); ++b) {
+      if (expected[b] < 5) {
+        EXPECT_LT(counts[b], 5 + 10 * expected[b]);
+        continue;
+      }
+      observed.push_back(counts[b]);
+      wanted.push_back(expected[b]);
+    }
+    EXPECT_LT(chi2(observed, wanted), chi2_critical(int(observed.size()) - 1)) << w[0] << " " << w[1] << " " << w[2] << " " << w[3];
+  }
+}
+
 TEST(Distribution1D, SamplesInProportionToWeights) {
   const std::vector<double> w = {1, 0, 3, 0, 6};
   Distribution1D d(w);
@@ -427,12 +462,17 @@ TEST(Emitters, APixelsLightPointsAreStratifiedOverAllOfALightsTriangles) {
       double total_solid_angle = 0;
       for (int cell = 0; cell < 16; ++cell) {
         const Vec3 lo = c + u * (float(cell % 4) / 4) + v * (float(cell / 4) / 4), du = u / 4, dv = v / 4;
-        expected[size_t(cell)] = ref.z < 0 ? 1.0 : triangle_solid_angle(lo - ref, lo + du - ref, lo + du + dv - ref) +
-                                                   triangle_solid_angle(lo - ref, lo + du + dv - ref, lo + dv - ref);
+        const Vec3 centre = lo + (du + dv) * 0.5f, to = centre - ref;
+        const double cosine = std::abs(to.z) / length(to);
+        // Afar: the fan evenly by area; the quad by its pdf (far_weights), in area measure.
+        expected[size_t(cell)] =
+            ref.z < 0 ? (fan ? 1.0 : emitters.pdf(0, ref, Vec3(), centre, Vec3(0, 0, -1)) * cosine / length_squared(to))
+                      : triangle_solid_angle(lo - ref, lo + du - ref, lo + du + dv - ref) +
+                            triangle_solid_angle(lo - ref, lo + du + dv - ref, lo + dv - ref);
         total_solid_angle += expected[size_t(cell)];
       }
       constexpr int kSamples = 256, kPixels = 32;
-      for (double& e : expected) e *= kSamples / (ref.z < 0 ? 16.0 : total_solid_angle);
+      for (double& e : expected) e *= kSamples / total_solid_angle;  // the total of whichever measure
       SobolSampler sampler(9);
       double mean_chi2 = 0;
       for (int pixel = 0; pixel < kPixels; ++pixel) {

@@ -396,45 +396,18 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 
       return s;
     }
   }
-  if (!e.quad) {  // by area
+  // By area: a quad's unit square maps linearly onto it, half A below the diagonal u + v = 1.
+  EmitterSample s;
+  if (!e.quad) {
     const Vec2 b = sample_uniform_triangle(u);
-    EmitterSample s = triangle_point(e, 0, {b.x, b.y, 1.0f - b.x - b.y});
-    s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
-    return s;
+    s = triangle_point(e, 0, {b.x, b.y, 1.0f - b.x - b.y});
+  } else if (u.x + u.y <= 1) {
+    s = triangle_point(e, 0, {1.0f - u.x - u.y, u.x, u.y});
+  } else {
+    s = triangle_point(e, 1, {1.0f - u.y, u.x + u.y - 1.0f, 1.0f - u.x});
   }
-  // A quad's unit square maps linearly onto it, half A below the diagonal u + v = 1, and points
-  // are drawn in it by far_weights.
-  float w[4];
-  far_weights(e, ref, w);
-  const Vec2 q = sample_bilinear(u, w);
-  EmitterSample s = q.x + q.y <= 1 ? triangle_point(e, 0, {1.0f - q.x - q.y, q.x, q.y})
-                                   : triangle_point(e, 1, {1.0f - q.y, q.x + q.y - 1.0f, 1.0f - q.x});
-  s.pdf = area_to_solid_angle(bilinear_density(q, w) / e.area, ref, s.p, s.n);
+  s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
   return s;
-}
-
-// Drawn uniformly by area, a light's solid-angle density d^2 / (area cos) varies over it with the
-// distance cubed (cos = plane distance / d): from the top of the Cornell box's walls, below its
-// light, by a factor of 2 to 3. Sampled by solid angle even there, the box's relMSE is 6% lower but
-// the spherical triangles cost 16% more time. So far from a quad, points are drawn by the bilinear
-// interpolation of (d_nearest / d)^3 at its corners instead: nearly the solid angle's density, for
-// the price of four distances.
-void Emitters::far_weights(const Emitter& e, const Vec3& ref, float w[4]) {
-  const float d[4] = {length(e.p0 - ref), length(e.p1 - ref), length(e.p2 - ref), length(e.p3 - ref)};
-  const float nearest = std::min({d[0], d[1], d[2], d[3]});
-  for (int k = 0; k < 4; ++k) {
-    const float r = nearest / d[k];
-    w[k] = nearest > 0 && std::isfinite(r) ? r * r * r : 1.0f;
-  }
-}
-
-// Where p lies in a quad's unit square: p = p0 + x (p1 - p0) + y (p2 - p0), by the areas p spans
-// with each edge over the quad's (products of two lengths, so in range at every scale a float
-// area is: the squared normal of a quad 1e-15 across underflowed).
-Vec2 Emitters::quad_coordinates(const Emitter& e, const Vec3& p) {
-  const Vec3 e1 = e.p1 - e.p0, e2 = e.p2 - e.p0, d = p - e.p0;
-  const float x = dot(cross(d, e2), e.normal) / e.area, y = dot(cross(e1, d), e.normal) / e.area;
-  return {std::clamp(x, 0.0f, 1.0f), std::clamp(y, 0.0f, 1.0f)};
 }
 
 float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {
@@ -444,10 +417,7 @@ float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, c
     const SolidAngleView view(e, ref);
     if (view.pays()) return 1.0f / view.solid_angle;
   }
-  if (!e.quad) return area_to_solid_angle(1.0f / e.area, ref, p, n);
-  float w[4];
-  far_weights(e, ref, w);
-  return area_to_solid_angle(bilinear_density(quad_coordinates(e, p), w) / e.area, ref, p, n);
+  return area_to_solid_angle(1.0f / e.area, ref, p, n);
 }
 
 EmitterSample Emitters::triangle_point(const Emitter& e, int half, const Barycentrics& b) const {

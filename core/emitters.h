@@ -117,12 +117,7 @@ class Emitters {
   struct SolidAngleView;
   static bool near_enough(const Emitter& e, float plane_distance);
 
-  // Corner weights (at (0, 0), (1, 0), (0, 1), (1, 1)) of the bilinear density a quad's points are
-  // drawn with where it is not sampled by solid angle.
-  static void far_weights(const Emitter& e, const Vec3& ref, float w[4]);
-  static Vec2 quad_coordinates(const Emitter& e, const Vec3& p);
-  // Triangles and quads: by solid angle when that pays (near_enough), else by area (triangles) or
-  // by far_weights (quads).
+  // Triangles and quads: by solid angle when that pays (see solid_angle_sampled), else by area.
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
   // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);

@@ -72,30 +72,6 @@ inline Vec2 sample_uniform_triangle(Vec2 u) {
   return {1.0f - su, u.y * su};
 }
 
-// x in [0, 1] with density proportional to (1 - x) a + x b (a, b >= 0, not both 0): the root of
-// the CDF written as u (a + b) / (a + sqrt(lerp(u, a^2, b^2))), which does not cancel whichever of
-// a and b is larger.
-inline float sample_linear(float u, float a, float b) {
-  if (a == b) return u;
-  const float x = u * (a + b) / (a + std::sqrt((1 - u) * a * a + u * b * b));
-  return std::min(x, kOneMinusEpsilon);
-}
-
-// The density over the unit square that interpolates w[0] at (0, 0), w[1] at (1, 0), w[2] at
-// (0, 1) and w[3] at (1, 1) bilinearly (weights >= 0, not all 0), normalised to integrate to 1.
-inline float bilinear_density(Vec2 p, const float w[4]) {
-  const float value = (1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] + p.x * p.y * w[3];
-  return 4 * value / (w[0] + w[1] + w[2] + w[3]);
-}
-
-// A point of the unit square drawn with bilinear_density: y by its marginal, which is linear, then
-// x by the linear density along that row. Each coordinate is monotone in its draw, so stratified
-// draws stay stratified.
-inline Vec2 sample_bilinear(Vec2 u, const float w[4]) {
-  const float y = sample_linear(u.y, w[0] + w[1], w[2] + w[3]);
-  return {sample_linear(u.x, (1 - y) * w[0] + y * w[2], (1 - y) * w[1] + y * w[3]), y};
-}
-
 // Veach's power heuristic with beta = 2 for two strategies taking one sample each.
 inline float power_heuristic(float pdf_a, float pdf_b) {
   const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;

@@ -62,8 +62,8 @@ TEST(QuadEmitters, TwoTrianglesOfAParallelogramAreOneLight) {
   }
 }
 
-// Sampled from near (by solid angle, the two halves in proportion to theirs), from afar (by the
-// bilinear weights) and at a grazing angle, a quad's points must fall on it with the density pdf()
+// Sampled from near (by solid angle, the two halves in proportion to theirs), from afar (by area,
+// the unit square mapped linearly onto the parallelogram) and at a grazing angle, a quad's points must fall on it with the density pdf()
 // reports: each of 4 x 4 cells of the parallelogram gets the pdf integrated over it (on 8 x 8
 // sub-cells), by a chi-square test, and E[1 / pdf] is the solid angle of the whole. A
 // mirrored instance and a double-sided quad seen from behind as well.
@@ -172,38 +172,6 @@ TEST(QuadEmitters, TexturedSamplesCarryTheirTrianglesUvs) {
       EXPECT_GT(in_second, 500);  // both halves sampled
       EXPECT_LT(in_second, 1500);
     }
-  }
-}
-
-}  // namespace
-}  // namespace prism
-
-namespace prism {
-namespace {
-
-// Far from a quad (not sampled by solid angle), the bilinear weights make the solid-angle density
-// nearly even over it, where drawing uniformly by area would vary with the distance cubed. From
-// points just beyond the reach of solid-angle sampling, to one side, as the Cornell box's upper
-// walls see its light.
-TEST(QuadEmitters, FarDensityIsNearlyEvenInSolidAngle) {
-  const Vec3 o(-0.5f, -0.3f, 1.0f), u(1.0f, 0, 0), v(0.4f, 0.7f, 0);
-  const SceneDesc scene = light_scene({o, o + v, o + u + v, o + u}, {0, 1, 2, 0, 2, 3});
-  const Emitters emitters(scene);
-  const Vec3 light_normal(0, 0, -1);
-  for (const Vec3 ref : {Vec3(2.0f, 0.1f, -0.7f), Vec3(0.3f, 2.5f, -0.65f)}) {
-    ASSERT_GT(std::abs(ref.z - 1.0f), length(u + v));  // beyond the reach of solid-angle sampling
-    float lo = 1e30f, hi = 0, area_lo = 1e30f, area_hi = 0;
-    for (int i = 0; i <= 8; ++i)
-      for (int j = 0; j <= 8; ++j) {
-        const Vec3 p = o + u * (i / 8.0f) + v * (j / 8.0f);
-        const float pdf = emitters.pdf(0, ref, Vec3(), p, light_normal);
-        const float d = length(p - ref), by_area = d * d * d / std::abs(ref.z - 1.0f);  // x area: d^2 / cos
-        lo = std::min(lo, pdf), hi = std::max(hi, pdf);
-        area_lo = std::min(area_lo, by_area), area_hi = std::max(area_hi, by_area);
-      }
-    std::printf("ref %g %g %g: pdf max/min %.3f, by area %.3f\n", ref.x, ref.y, ref.z, hi / lo, area_hi / area_lo);
-    // Measured 1.128 against 3.307, and 1.116 against 1.968.
-    EXPECT_LT(hi / lo - 1, (area_hi / area_lo - 1) / 4);
   }
 }
 

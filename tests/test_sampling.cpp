@@ -187,41 +187,6 @@ TEST(Sampling, UniformTriangleMatchesArea) {
   EXPECT_LT(chi2(counts, expected), chi2_critical(k * k - 1));
 }
 
-TEST(Sampling, BilinearMatchesItsDensity) {
-  // Corner weights even, skewed, with zeros, and nearly all on one corner; 8 x 8 bins against the
-  // density integrated on 4 x 4 points each.
-  const float cases[][4] = {{1, 1, 1, 1}, {1, 2, 3, 4}, {0, 1, 0, 2}, {5, 0, 0, 0}, {1e-3f, 1, 1, 1}};
-  for (const auto& w : cases) {
-    constexpr int k = 8, sub = 4, n = 200000;
-    std::vector<double> counts(k * k, 0), expected(k * k, 0);
-    double integral = 0;
-    for (int i = 0; i < k * sub; ++i)
-      for (int j = 0; j < k * sub; ++j) {
-        const double d = bilinear_density({(i + 0.5f) / (k * sub), (j + 0.5f) / (k * sub)}, w) / (k * sub * k * sub);
-        expected[size_t((j / sub) * k + i / sub)] += n * d;
-        integral += d;
-      }
-    EXPECT_NEAR(integral, 1.0, 1e-5);
-    Pcg32 rng(3, 4);
-    for (int s = 0; s < n; ++s) {
-      const Vec2 p = sample_bilinear({rng.next_float(), rng.next_float()}, w);
-      ASSERT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1) << p.x << " " << p.y;
-      counts[size_t(int(p.y * k) * k + int(p.x * k))] += 1;
-    }
-    // Bins the density leaves empty get none (pooled out of the statistic).
-    std::vector<double> observed, wanted;
-    for (size_t b = 0; b < counts.size(); ++b) {
-      if (expected[b] < 5) {
-        EXPECT_LT(counts[b], 5 + 10 * expected[b]);
-        continue;
-      }
-      observed.push_back(counts[b]);
-      wanted.push_back(expected[b]);
-    }
-    EXPECT_LT(chi2(observed, wanted), chi2_critical(int(observed.size()) - 1)) << w[0] << " " << w[1] << " " << w[2] << " " << w[3];
-  }
-}
-
 TEST(Distribution1D, SamplesInProportionToWeights) {
   const std::vector<double> w = {1, 0, 3, 0, 6};
   Distribution1D d(w);
@@ -464,7 +429,7 @@ TEST(Emitters, APixelsLightPointsAreStratifiedOverAllOfALightsTriangles) {
         const Vec3 lo = c + u * (float(cell % 4) / 4) + v * (float(cell / 4) / 4), du = u / 4, dv = v / 4;
         const Vec3 centre = lo + (du + dv) * 0.5f, to = centre - ref;
         const double cosine = std::abs(to.z) / length(to);
-        // Afar: the fan evenly by area; the quad by its pdf (far_weights), in area measure.
+        // Afar: evenly by area (the quad's pdf, in area measure, says so).
         expected[size_t(cell)] =
             ref.z < 0 ? (fan ? 1.0 : emitters.pdf(0, ref, Vec3(), centre, Vec3(0, 0, -1)) * cosine / length_squared(to))
                       : triangle_solid_angle(lo - ref, lo + du - ref, lo + du + dv - ref) +

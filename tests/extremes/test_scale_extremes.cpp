@@ -174,7 +174,7 @@ TEST(ScaleExtremes, GlassSlabTransmitsTheSameAtEveryScale) {
 
 // Light sampling has no scale of its own: scaled with the scene, a quad light's samples land on
 // the same points (in units of the scale) with the same solid-angle density, from 1e-15 to 1e18,
-// both where it is sampled by solid angle (near its plane) and by its far weights (far). The spherical
+// both where it is sampled by solid angle (near its plane) and by area (far). The spherical
 // construction once divided by the product of three distances, which overflows a float at ~1e12
 // and underflows at ~1e-12, so near lights silently fell back to the noisier area sampling there.
 TEST(ScaleExtremes, LightSamplesAreTheSameAtEveryScale) {
@@ -185,7 +185,7 @@ TEST(ScaleExtremes, LightSamplesAreTheSameAtEveryScale) {
     return scene;
   };
   const SceneDesc unit_scene = light_scene(1.0f);
-  // Near: 0.05 under the light's plane, by solid angle; far: 3 under it.
+  // Near: 0.05 under the light's plane, by solid angle; far: 3 under it, by area.
   // The receiving surface faces the light, tilted so the tree's cosine bound is not trivial.
   const Vec3 n = normalize(Vec3(0.3f, 0.2f, 1.0f));
   for (const LightSampling how : {LightSampling::Tree, LightSampling::Power})

@@ -1,6 +1,7 @@
 // Quad emitters: two triangles that form a parallelogram are one light, sampled as a whole.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -63,10 +64,10 @@ TEST(QuadEmitters, TwoTrianglesOfAParallelogramAreOneLight) {
 }
 
 // Sampled from near (by solid angle, the two halves in proportion to theirs), from afar (by area,
-// the unit square mapped linearly onto the parallelogram) and at a grazing angle, a quad's points must fall on it with the density pdf()
-// reports: each of 4 x 4 cells of the parallelogram gets the pdf integrated over it (on 8 x 8
-// sub-cells), by a chi-square test, and E[1 / pdf] is the solid angle of the whole. A
-// mirrored instance and a double-sided quad seen from behind as well.
+// the unit square mapped linearly onto the parallelogram) and at a grazing angle, a quad's points
+// must fall on it with the density pdf() reports: each of 4 x 4 cells of the parallelogram gets
+// the pdf integrated over it (on 8 x 8 sub-cells), by a chi-square test, and E[1 / pdf] is the
+// solid angle of the whole. A mirrored instance and a double-sided quad seen from behind as well.
 TEST(QuadEmitters, SamplesFollowTheirPdfOverTheWholeQuad) {
   const Vec3 o(-0.5f, -0.3f, 1.0f), u(1.0f, 0, 0), v(0.4f, 0.7f, 0);
   const std::vector<Vec3> corners = {o, o + v, o + u + v, o + u};  // front face toward -z

@@ -117,7 +117,7 @@ class Emitters {
   struct SolidAngleView;
   static bool near_enough(const Emitter& e, float plane_distance);
 
-  // Triangles and quads: by solid angle when that pays (see solid_angle_sampled), else by area.
+  // Triangles and quads: by solid angle where near_enough and SolidAngleView::pays(), else by area.
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
   // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);

@@ -29,7 +29,7 @@ class SphericalTriangle {
     c.p = p;
     const Vec3 d = p - ref;
     c.distance = length(d);
-    c.inverse_distance = 1.0f / c.distance;
+    c.inverse_distance = c.distance > 0 ? 1.0f / c.distance : 0.0f;  // ref on the corner: no direction
     c.dir = d * c.inverse_distance;
     return c;
   }

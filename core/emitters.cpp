@@ -107,9 +107,8 @@ bool Emitters::merge_into_quad(Emitter& a, const Emitter& b) {
       const uint8_t* cb = b.corner;
       const uint8_t corners[6] = {ca[(i + 2) % 3], ca[i], ca[(i + 1) % 3], cb[(j + 1) % 3], cb[(j + 2) % 3], cb[j]};
       std::copy(corners, corners + 6, q.corner);
-      q.area = 2 * face_normal(o, s1, s2).area;  // the parallelogram the samples are drawn in
-      if (!(q.area > 0) || !std::isfinite(q.area)) return false;
-      q.longest_edge2 = std::max({length_squared(s1 - o), length_squared(s2 - o), length_squared(s1 - s2)});
+      q.area = 2 * a.area;  // the parallelogram the samples are drawn in; its half's longest edge is a's
+      if (!std::isfinite(q.area)) return false;
       a = q;
       return true;
     }
@@ -133,12 +132,19 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
       prim_triangle_base_.push_back(static_cast<int>(triangle_emitter_.size()));
       const float radiance = luminance(mean_emission(desc, mat)) * (mat.double_sided ? 2.0f : 1.0f);
       const auto count = static_cast<uint32_t>(prim.triangle_count());
+      std::optional<Emitter> made;  // triangle t, made already as the one after a triangle it did not join
       for (uint32_t t = 0; t < count; ++t) {
-        Emitter e = make_triangle(inst, int(i), prim, int(p), t);
+        Emitter e = made ? *made : make_triangle(inst, int(i), prim, int(p), t);
+        made.reset();
         triangle_emitter_.push_back(static_cast<int>(emitters_.size()));
-        if (t + 1 < count && merge_into_quad(e, make_triangle(inst, int(i), prim, int(p), t + 1))) {
-          triangle_emitter_.push_back(static_cast<int>(emitters_.size()));
-          ++t;
+        if (t + 1 < count) {
+          const Emitter b = make_triangle(inst, int(i), prim, int(p), t + 1);
+          if (merge_into_quad(e, b)) {
+            triangle_emitter_.push_back(static_cast<int>(emitters_.size()));
+            ++t;
+          } else {
+            made = b;
+          }
         }
         emitters_.push_back(e);
         power.push_back(double(radiance) * e.area * kPi);

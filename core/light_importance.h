@@ -3,13 +3,14 @@
 #pragma once
 
 #include "core/float4.h"
+#include "core/float8.h"
 #include "core/light_bounds.h"
 #include "core/vec3.h"
 
 namespace prism {
 
 // LightBounds reduced to what judging it from a point needs, precomputed, in lanes of type F
-// (float for one group, Float4 for four).
+// (float for one group, Float4 for four, Float8 for eight).
 template <class F>
 struct ImportanceTerms {
   F center_x, center_y, center_z;  // of the box
@@ -21,6 +22,24 @@ struct ImportanceTerms {
   F inv_radius2;  // 1 / max(radius^2, FLT_MIN): the inverse square's cap
   F power;        // scaled by the tree's power_scale
 };
+
+// op(out.t, in.t...) for every term t, the same term of every argument together.
+template <class Op, class Out, class... In>
+void for_each_term(Op op, Out& out, const In&... in) {
+  op(out.center_x, in.center_x...);
+  op(out.center_y, in.center_y...);
+  op(out.center_z, in.center_z...);
+  op(out.radius, in.radius...);
+  op(out.axis_x, in.axis_x...);
+  op(out.axis_y, in.axis_y...);
+  op(out.axis_z, in.axis_z...);
+  op(out.cos_o, in.cos_o...);
+  op(out.sin_o, in.sin_o...);
+  op(out.cos_emit, in.cos_emit...);
+  op(out.two_sided, in.two_sided...);
+  op(out.inv_radius2, in.inv_radius2...);
+  op(out.power, in.power...);
+}
 
 // An estimate of the light the group sends to point p whose surface has unit normal n (zero: no
 // surface), from bounds on the emission and incidence angles over the whole group: power x
@@ -92,9 +111,17 @@ class LightImportance4 {
   LightImportance4() = default;  // every lane as LightImportance(): no power
   void set(int lane, const LightImportance& group);
   void evaluate(const Vec3& p, const Vec3& n, float out[4]) const { importance_at(terms_, p, n).store(out); }
+  const ImportanceTerms<Float4>& terms() const { return terms_; }
 
  private:
   ImportanceTerms<Float4> terms_;
 };
+
+// Two LightImportance4 judged at once in eight AVX lanes: out[0..3] are what lo.evaluate gives and
+// out[4..7] what hi.evaluate gives, bit for bit, in about half the instructions of the two calls.
+// Returns their sum added pairwise, ((o0 + o1) + (o2 + o3)) + ((o4 + o5) + (o6 + o7)). Call only
+// where cpu_has_avx2().
+float evaluate_pair(const LightImportance4& lo, const LightImportance4& hi, const Vec3& p, const Vec3& n,
+                    float out[8]);
 
 }  // namespace prism

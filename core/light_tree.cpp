@@ -294,10 +294,19 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
   return all;
 }
 
+// Unused lanes are judged too (they come to 0). The sums are pairwise, group by group, both ways.
 float LightTree::judge(int node, const Vec3& p, const Vec3& n, float importance[kWidth]) const {
-  // Four at a time, unused lanes too (they come to 0); summed pairwise.
+  const int groups = groups_for(groups_[size_t(node)].children);
+  if (groups == 2 && eight_lanes_)
+    return evaluate_pair(groups_[size_t(node)].importance, groups_[size_t(node) + 1].importance, p, n, importance);
+  return judge_by_fours(node, groups, p, n, importance);
+}
+
+// Out of line, so that judge() itself stays a test and a jump (no registers to save).
+[[gnu::noinline]] float LightTree::judge_by_fours(int node, int groups, const Vec3& p, const Vec3& n,
+                                                   float importance[kWidth]) const {
   float sum = 0;
-  for (int g = 0; g < groups_for(groups_[size_t(node)].children); ++g) {
+  for (int g = 0; g < groups; ++g) {
     float* four = importance + kLanes * g;
     groups_[size_t(node + g)].importance.evaluate(p, n, four);
     sum += (four[0] + four[1]) + (four[2] + four[3]);

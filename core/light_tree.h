@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cpu_features.h"
 #include "core/light_importance.h"
 
 namespace prism {
@@ -82,6 +83,8 @@ class LightTree {
   }
   // The children's importance at (p, n) and their sum (not positive when none can light p).
   float judge(int node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
+  // judge() four children at a time, one group after the other.
+  float judge_by_fours(int node, int groups, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
 
   std::vector<Group> groups_;     // the nodes' groups, the root's first
   std::vector<int32_t> slot_of_;  // item -> its slot, or -1
@@ -91,6 +94,7 @@ class LightTree {
   std::vector<double> slot_cdf_;
   int depth_ = 0;
   double power_ = 0;  // of all the lights
+  bool eight_lanes_ = cpu_has_avx2();  // judge() a node's two groups at once (evaluate_pair)
 };
 
 }  // namespace prism

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "core/cpu_features.h"
+
 namespace prism {
 namespace {
 
@@ -45,12 +47,6 @@ __attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, 
   u[6] = f[4];
 }
 
-bool owen_sobol_vertex_available() {
-  static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return avx2;
-}
+bool owen_sobol_vertex_available() { return cpu_has_avx2(); }
 
 }  // namespace prism

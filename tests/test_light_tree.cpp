@@ -9,6 +9,7 @@
 
 #include "chi_square.h"
 #include "core/constants.h"
+#include "core/cpu_features.h"
 #include "core/emitters.h"
 #include "core/light_tree.h"
 #include "core/pcg32.h"
@@ -304,6 +305,43 @@ TEST(LightImportance4, EachLaneIsTheOneGroupFormBitForBit) {
   EXPECT_GT(zero, checked / 10);
   EXPECT_GT(checked - zero, checked / 10);
   EXPECT_GT(inside, 0);
+}
+
+// A node of eight children is judged in eight AVX lanes where the CPU has AVX2: each half of the
+// pair must give the bits its LightImportance4 gives (and so the one-group form's, above), and the
+// sum the bits of the tree's pairwise sum of the two.
+TEST(LightImportance4, PairsInEightLanesAreTheFourLaneFormBitForBit) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2";
+  Pcg32 rng(13, 14);
+  const std::vector<LightBounds> lights = mixed_lights(rng, 400);
+  std::vector<LightImportance> groups;
+  for (const LightBounds& b : lights) groups.emplace_back(b, 1e-2);
+  int checked = 0, zero = 0;
+  for (size_t first = 0; first + 8 <= groups.size(); first += 5) {
+    LightImportance4 lo, hi;
+    const int used = 5 + int(first % 4);  // 5 to 8 lanes set, the rest left without power
+    for (int k = 0; k < used; ++k) (k < 4 ? lo : hi).set(k % 4, groups[first + size_t(k)]);
+    for (int i = 0; i < 24; ++i) {
+      Vec3 p = random_in_box(rng, 6.0f);
+      if (i == 0) p = lights[first + 4].box.center();  // at a group's centre: no direction to it
+      if (i == 1) p = lights[first + 5].box.center() + 0.1f * (lights[first + 5].box.diagonal());  // inside its sphere
+      const Vec3 n = i % 3 == 0 ? Vec3() : random_direction(rng);
+      float pair[8], four[8];
+      const float sum = evaluate_pair(lo, hi, p, n, pair);
+      lo.evaluate(p, n, four);
+      hi.evaluate(p, n, four + 4);
+      const float four_sum = ((four[0] + four[1]) + (four[2] + four[3])) + ((four[4] + four[5]) + (four[6] + four[7]));
+      ASSERT_EQ(std::bit_cast<uint32_t>(sum), std::bit_cast<uint32_t>(four_sum)) << "sum at point " << i;
+      for (int k = 0; k < 8; ++k) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(pair[k]), std::bit_cast<uint32_t>(four[k]))
+            << "lane " << k << " of groups from " << first << " at point " << i << ": " << pair[k] << " vs " << four[k];
+        ++checked;
+        zero += four[k] == 0;
+      }
+    }
+  }
+  EXPECT_GT(zero, checked / 10);
+  EXPECT_GT(checked - zero, checked / 10);
 }
 
 TEST(DirectionCone, UnionHoldsBothCones) {

@@ -1,7 +1,10 @@
 #include "core/light_tree.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +21,8 @@ constexpr int kMaxSahDepth = 48;
 // which still shapes every subtree below this size. Only emissive meshes of tens of thousands of
 // triangles reach it; its effect on their noise is not measured (docs/PERFORMANCE.md).
 constexpr size_t kMaxSahLights = 16384;
+// From this many lights a node builds its two subtrees in parallel.
+constexpr size_t kParallelLights = 65536;
 
 float surface_area(const Bounds3& b) {
   const Vec3 d = b.diagonal();
@@ -127,9 +132,10 @@ LightTree::LightTree(std::vector<LightBounds> items) {
   // the binary hierarchy holds their bounds, and the binary hierarchy once collapsed.
   std::vector<LightBounds>().swap(items);
   if (lights.empty()) return;
-  std::vector<BinaryNode> binary;
-  binary.reserve(2 * lights.size() - 1);
-  build(binary, lights, 0, lights.size(), 0);
+  std::vector<BinaryNode> binary(2 * lights.size() - 1);
+  slot_item_.assign(lights.size(), -1);
+  slot_cdf_.assign(lights.size(), 0.0);
+  build(binary, 0, lights, 0, lights.size(), 0);
   std::vector<BuildItem>().swap(lights);
   // Counted first: growing the vector instead would copy (and fault in) it several times, and
   // reserving a bound would hold address space (a node per interior binary node) it never uses.
@@ -185,19 +191,20 @@ int32_t LightTree::collapse(const std::vector<BinaryNode>& binary, int b) {
   return index;
 }
 
-LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin,
-                             size_t end, int depth) {
-  depth_ = std::max(depth_, depth);
-  const int index = static_cast<int>(binary.size());
-  binary.push_back({});
-  // Subtrees are built depth first and leaves number their slots in that order, so this node's
-  // lights are the next end - begin slots.
-  binary.back().first = static_cast<int32_t>(slot_item_.size());
-  binary.back().count = static_cast<int32_t>(end - begin);
+// A subtree of n lights has at most 2 n - 1 nodes, so each child's place follows from the light
+// counts alone: the first child right after its parent, the second after the first's room. The
+// nodes are numbered depth first, as the slots are, with gaps where a subtree ended in a leaf of
+// lights alike; nothing refers to those. Nothing is placed by the order of the work either, so
+// the two subtrees of a large node are built in parallel and the tree does not depend on threads.
+LightBounds LightTree::build(std::vector<BinaryNode>& binary, size_t at, std::vector<BuildItem>& lights,
+                             size_t begin, size_t end, int depth) {
+  // Subtrees keep their lights where the partitions above left them: light k is slot k.
+  binary[at].first = static_cast<int32_t>(begin);
+  binary[at].count = static_cast<int32_t>(end - begin);
   bool alike = true;
   for (size_t k = begin + 1; k < end && alike; ++k) alike = same_bounds(lights[begin].bounds, lights[k].bounds);
   if (alike) {
-    BinaryNode& leaf = binary[size_t(index)];
+    BinaryNode& leaf = binary[at];
     LightBounds all = lights[begin].bounds;
     double leaf_power = 0;
     for (size_t k = begin; k < end; ++k) leaf_power += lights[k].bounds.power;
@@ -207,9 +214,13 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
     for (size_t k = begin; k < end; ++k) {
       const int item = lights[k].item;
       cumulative += lights[k].bounds.power;
-      slot_of_[size_t(item)] = static_cast<int32_t>(slot_item_.size());
-      slot_item_.push_back(item);
-      slot_cdf_.push_back(k + 1 == end ? 1.0 : cumulative / leaf_power);
+      slot_of_[size_t(item)] = static_cast<int32_t>(k);
+      slot_item_[k] = item;
+      slot_cdf_[k] = k + 1 == end ? 1.0 : cumulative / leaf_power;
+    }
+    std::atomic_ref<int> deepest(depth_);  // subtrees may be built on other threads
+    for (int seen = deepest.load(std::memory_order_relaxed);
+         seen < depth && !deepest.compare_exchange_weak(seen, depth, std::memory_order_relaxed);) {
     }
     return all;
   }
@@ -285,12 +296,18 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, std::vector<BuildI
                      [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
   if (mid == begin || mid == end) mid = begin + (end - begin) / 2;
-  const LightBounds first = build(binary, lights, begin, mid, depth + 1);
-  const int right = static_cast<int>(binary.size());
-  const LightBounds second = build(binary, lights, mid, end, depth + 1);
+  const size_t left_at = at + 1, right_at = at + 2 * (mid - begin);
+  LightBounds first, second;
+  if (end - begin < kParallelLights) {
+    first = build(binary, left_at, lights, begin, mid, depth + 1);
+    second = build(binary, right_at, lights, mid, end, depth + 1);
+  } else {
+    tbb::parallel_invoke([&] { first = build(binary, left_at, lights, begin, mid, depth + 1); },
+                         [&] { second = build(binary, right_at, lights, mid, end, depth + 1); });
+  }
   const LightBounds all = merge(first, second);
-  binary[size_t(index)].right = right;
-  binary[size_t(index)].importance = LightImportance(all, 1.0 / power_);
+  binary[at].right = static_cast<int32_t>(right_at);
+  binary[at].importance = LightImportance(all, 1.0 / power_);
   return all;
 }
 

@@ -61,9 +61,10 @@ class LightTree {
   const Group& group_of(int node, int k) const { return groups_[size_t(node + k / kLanes)]; }
   struct BinaryNode;
   struct BuildItem;
-  // Builds the binary subtree over lights[begin, end) as binary.size(); returns its bounds.
-  LightBounds build(std::vector<BinaryNode>& binary, std::vector<BuildItem>& lights, size_t begin, size_t end,
-                    int depth);
+  // Builds the binary subtree over lights[begin, end) with its root at binary[at], its nodes within
+  // binary[at, at + 2 (end - begin) - 1); returns its bounds.
+  LightBounds build(std::vector<BinaryNode>& binary, size_t at, std::vector<BuildItem>& lights, size_t begin,
+                    size_t end, int depth);
   // The descendants of binary node b that become the children of its node: b opened, then the most
   // powerful interior one among them again and again, until there are kWidth or all are leaves.
   // Returns how many, in kids, in slot order.

@@ -1,7 +1,5 @@
 #include "core/light_tree.h"
 
-#include <tbb/parallel_invoke.h>
-
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -9,6 +7,7 @@
 #include <limits>
 
 #include "core/distribution_1d.h"
+#include "core/parallel_pair.h"
 
 namespace prism {
 namespace {
@@ -302,8 +301,8 @@ LightBounds LightTree::build(std::vector<BinaryNode>& binary, size_t at, std::ve
     first = build(binary, left_at, lights, begin, mid, depth + 1);
     second = build(binary, right_at, lights, mid, end, depth + 1);
   } else {
-    tbb::parallel_invoke([&] { first = build(binary, left_at, lights, begin, mid, depth + 1); },
-                         [&] { second = build(binary, right_at, lights, mid, end, depth + 1); });
+    parallel_pair([&] { first = build(binary, left_at, lights, begin, mid, depth + 1); },
+                  [&] { second = build(binary, right_at, lights, mid, end, depth + 1); });
   }
   const LightBounds all = merge(first, second);
   binary[at].right = static_cast<int32_t>(right_at);

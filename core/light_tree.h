@@ -40,8 +40,8 @@ class LightTree {
   // takes up to eight descendants as its children and a pick weighs them by their own, tighter
   // importance instead of multiplying ratios of looser bounds. The walk has a third of the levels,
   // which on a tree of a million lights means fewer cache misses, and the children are judged
-  // four at a time in SIMD lanes. Eight children cost what four did and choose better
-  // (docs/PERFORMANCE.md, "SIMD importance").
+  // four at a time in SSE lanes, or all eight in one AVX2 pass (evaluate_pair). Eight children
+  // cost what four did and choose better (docs/PERFORMANCE.md, "SIMD importance").
   //
   // A node is stored as its children's groups of four, one after another: one group when it has
   // up to four children, two when more. A node with four or fewer (near the leaves, where the

@@ -40,6 +40,9 @@ double split_cost(const LightBounds& b, float k_r) {
 float cos_widest_from(const Vec3& axis, const DirectionCone& c) {
   const float cos_a = std::clamp(dot(axis, c.w), -1.0f, 1.0f), cos_b = c.cos_theta;
   if (cos_a < -cos_b) return -1.0f;
+  // A single direction (an emissive triangle's normal): the formula's value exactly, without its
+  // two square roots, which the split search would take for every light, axis and level.
+  if (cos_b == 1.0f) return cos_a;
   const float sin_a = std::sqrt(std::max(0.0f, 1 - cos_a * cos_a)), sin_b = std::sqrt(std::max(0.0f, 1 - cos_b * cos_b));
   return cos_a * cos_b - sin_a * sin_b;
 }

@@ -10,6 +10,7 @@
 
 #include "core/constants.h"
 #include "core/distribution_2d.h"
+#include "core/light_tree.h"
 #include "core/pcg32.h"
 #include "core/sampler.h"
 #include "core/sobol_sampler.h"
@@ -206,6 +207,50 @@ void BM_EmitterSampleManyLights(benchmark::State& state) {
   emitter_sample_benchmark(state, Vec3(0.3f, 0.0f, 0.4f) - scene.origin(), Vec3(0, 1, 0), scene);
 }
 BENCHMARK(BM_EmitterSampleManyLights)->Arg(0)->Arg(1);
+
+// A light tree over small emissive triangles on a wavy sheet (an emissive mesh, as the heavy-mesh
+// scene made emissive gives it), picked from random points above the sheet. Args: the sheet's side
+// in triangles (1024: a million lights, a tree far larger than the caches; 32: a thousand, one
+// that fits them), and how many picks go together (sample_many, as a packet's lanes make them);
+// items are picks.
+void BM_LightTreePick(benchmark::State& state) {
+  const int side = int(state.range(0));
+  static std::map<int, LightTree> trees;
+  if (!trees.count(side)) {
+    std::vector<LightBounds> lights(size_t(side) * size_t(side));
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        LightBounds& b = lights[size_t(y) * size_t(side) + size_t(x)];
+        const float h = 0.5f * std::sin(20.0f * float(x) / float(side)) * std::cos(30.0f * float(y) / float(side));
+        b.box.extend(Vec3(float(x), 0, float(y)) * (10.0f / float(side)) + Vec3(0, h, 0));
+        b.box.extend(Vec3(float(x + 1), 0, float(y + 1)) * (10.0f / float(side)) + Vec3(0, h + 0.01f, 0));
+        b.normals = {normalize(Vec3(0.1f * std::cos(20.0f * float(x) / float(side)), 1.0f, 0.0f)), 1.0f};
+        b.cos_emit = 0;
+        b.power = 1.0 + 0.5 * std::sin(0.1 * x * y);
+      }
+    trees.emplace(side, LightTree(std::move(lights)));
+  }
+  const LightTree& tree = trees.at(side);
+  const int batch = int(state.range(1));
+  Pcg32 rng(7, 8);
+  Vec3 p[8], n[8];
+  float u[8];
+  std::optional<LightTree::Pick> picks[8];
+  for (auto _ : state) {
+    for (int i = 0; i < batch; ++i) {
+      p[i] = {10.0f * rng.next_float(), 1.0f + rng.next_float(), 10.0f * rng.next_float()};
+      n[i] = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      u[i] = rng.next_float();
+    }
+    if (batch == 1)
+      picks[0] = tree.sample(p[0], n[0], u[0]);
+    else
+      tree.sample_many(p, n, u, batch, picks);
+    benchmark::DoNotOptimize(picks);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * batch);
+}
+BENCHMARK(BM_LightTreePick)->ArgsProduct({{32, 128, 1024}, {1, 8}});
 
 // An environment map's sampling density, as an HDRI gives it: 2048 x 1024 texels of sky that vary
 // by a factor of five, and a sun of 10 x 10 texels 20000 times brighter that takes most of the

@@ -241,9 +241,40 @@ std::optional<Emitters::Pick> Emitters::pick_first(float u) const {
 std::optional<Emitters::Pick> Emitters::pick(const Vec3& ref, const Vec3& ref_n, float u) const {
   const std::optional<Pick> first = pick_first(u);
   if (!first || first->index != kDownTheTree) return first;
-  const std::optional<LightTree::Pick> leaf = tree_.sample(ref, ref_n, first->remapped);
-  if (!leaf) return std::nullopt;
-  return Pick{size_t(leaf->item), first->pmf * leaf->pmf, leaf->remapped};
+  return down_the_tree(*first, tree_.sample(ref, ref_n, first->remapped));
+}
+
+void Emitters::pick_many(const Vec3* ref, const Vec3* ref_n, const float* u_x, int count,
+                         std::optional<Pick>* out) const {
+  constexpr int kBatch = 8;
+  if (count > kBatch) {
+    for (int first = 0; first < count; first += kBatch)
+      pick_many(ref + first, ref_n + first, u_x + first, std::min(count - first, kBatch), out + first);
+    return;
+  }
+  Vec3 p[kBatch], n[kBatch];
+  float u[kBatch];
+  int lane[kBatch], down = 0;
+  for (int i = 0; i < count; ++i) {
+    out[i] = pick_first(u_x[i]);
+    if (out[i] && out[i]->index == kDownTheTree) {
+      p[down] = ref[i];
+      n[down] = ref_n[i];
+      u[down] = out[i]->remapped;
+      lane[down++] = i;
+    }
+  }
+  if (down > 0) {
+    std::optional<LightTree::Pick> leaves[kBatch];
+    tree_.sample_many(p, n, u, down, leaves);
+    for (int j = 0; j < down; ++j) out[lane[j]] = down_the_tree(*out[lane[j]], leaves[j]);
+  }
+  for (int i = 0; i < count; ++i)
+    if (out[i] && out[i]->index < emitters_.size()) {
+      const char* e = reinterpret_cast<const char*>(&emitters_[out[i]->index]);
+      __builtin_prefetch(e);
+      __builtin_prefetch(e + sizeof(Emitter) - 1);
+    }
 }
 
 std::optional<Vec2> Emitters::environment_map_draw(float u_spare, Vec2 u) const {
@@ -281,9 +312,10 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
 // reuses its draw the same way). Each rescaling leaves log2(1 / share) fewer bits of u.x, so below
 // a share of 2^-8 (16 bits left) the independent u_spare places the point instead: either way the
 // point is uniform given the choice, so the density is the same.
-EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
-                               const EnvironmentLight::Sample* sky) const {
-  const std::optional<Pick> chosen = pick(ref, ref_n, u.x);
+// Inlined in sample(), which is what most scenes call.
+[[gnu::always_inline]] EmitterSample Emitters::sample_light(const std::optional<Pick>& chosen, const Vec3& ref,
+                                                            float u_spare, Vec2 u,
+                                                            const EnvironmentLight::Sample* sky) const {
   if (!chosen) return {};
   u.x = point_draw(*chosen, u_spare);
   const size_t i = chosen->index;
@@ -342,6 +374,11 @@ EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare
   s.emitter = static_cast<int>(i);
   s.pdf *= chosen->pmf;
   return s;
+}
+
+EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
+                               const EnvironmentLight::Sample* sky) const {
+  return sample_light(pick(ref, ref_n, u.x), ref, u_spare, u, sky);
 }
 
 float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const {

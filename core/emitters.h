@@ -52,6 +52,23 @@ class Emitters {
   // other, that share an edge and form a parallelogram: one light, sampled as a whole).
   size_t size() const { return emitters_.size(); }
 
+  // A light chosen for a shading point: an emitter, then punctual lights, then the environment.
+  struct Pick {
+    size_t index = 0;
+    float pmf = 0;
+    float remapped = 0;  // u rescaled to [0, 1) within the chosen emitter's share of it
+  };
+  // Whether choosing the lights of several shading points together (pick_many) pays: where the
+  // light depends on the point (a light tree) and the tree is larger than the caches, so that the
+  // walks wait for their nodes together. On a tree that fits in them (up to about 10^4 lights) a
+  // walk waits for nothing, and the shading around each walk hides its chain of square roots.
+  bool picks_ahead() const { return tree_pays() && tree_.node_bytes() >= kPickAheadBytes; }
+  static constexpr size_t kPickAheadBytes = size_t(4) << 20;
+  // The light sample(ref[i], ref_n[i], ., u) chooses where u.x = u_x[i], for count shading points
+  // at once: on a light tree their walks go together (LightTree::sample_many), and the chosen
+  // emitters are asked for from memory before any is sampled.
+  void pick_many(const Vec3* ref, const Vec3* ref_n, const float* u_x, int count, std::optional<Pick>* out) const;
+
   // Samples a point on an emitter for shading point `ref` on a surface with unit normal `ref_n`
   // (zero: none); pdf 0 when nothing can be sampled. u chooses the emitter and the point on it;
   // u_spare stands in for u.x where the emitter's share of u.x is too narrow to place the point.
@@ -59,6 +76,9 @@ class Emitters {
   // (a batch of draws at once), else null.
   EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
                        const EnvironmentLight::Sample* sky = nullptr) const;
+  // sample() where the light was chosen already: `chosen` is pick_many's choice for (ref, ref_n, u.x).
+  EmitterSample sample_light(const std::optional<Pick>& chosen, const Vec3& ref, float u_spare, Vec2 u,
+                             const EnvironmentLight::Sample* sky = nullptr) const;
   // Where the draw (u_spare, u) chooses a map's sky, and the sky has no portals, the draw it hands
   // the map: a light is chosen before the shading point is known only there (lights at infinity
   // are chosen by power). So a packet's sky samples can be drawn together, ahead of shading.
@@ -127,13 +147,13 @@ class Emitters {
   EmitterSample sample_sphere(const Emitter& e, const Vec3& ref, Vec2 u) const;
   float sphere_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;
 
-  struct Pick {
-    size_t index = 0;
-    float pmf = 0;
-    float remapped = 0;  // u rescaled to [0, 1) within the chosen emitter's share of it
-  };
   void build_tree(const SceneDesc& desc, const std::vector<double>& power);
   std::optional<Pick> pick(const Vec3& ref, const Vec3& ref_n, float u) const;
+  // The light a walk down the tree, after pick_first() chose it, ends at.
+  static std::optional<Pick> down_the_tree(const Pick& first, const std::optional<LightTree::Pick>& leaf) {
+    if (!leaf) return std::nullopt;
+    return Pick{size_t(leaf->item), first.pmf * leaf->pmf, leaf->remapped};
+  }
   // The step of pick() that does not depend on the shading point: by power among all lights, or
   // between the tree (index kDownTheTree, to go on with `remapped`) and each light at infinity.
   static constexpr size_t kDownTheTree = ~size_t(0);

@@ -342,45 +342,111 @@ std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) co
   return {slot, static_cast<float>(share)};
 }
 
+// One level of a walk: judges the children of the walk's node and moves into the one u chooses,
+// or stops at a leaf (Step::Leaf, its lights in w.first, w.count) or where no light reaches p.
+LightTree::Step LightTree::descend(Walk& w, const Vec3& p, const Vec3& n) const {
+  const int children = groups_[size_t(w.node)].children;
+  int k = 0;
+  // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in
+  // sampling by power; what cannot reach p then contributes nothing.
+  if (children > 1) {
+    float importance[kWidth];
+    const float sum = judge(w.node, p, n, importance);
+    if (!(sum > 0)) return Step::None;
+    // The child whose share of [0, sum) holds u * sum; children of importance 0 are skipped,
+    // rounding cannot land on them.
+    const float target = w.u * sum;
+    float below = 0;
+    int last = 0;
+    for (int c = 0; c < children; ++c)
+      if (importance[c] > 0) last = c;
+    k = last;
+    for (int c = 0; c < last; ++c) {
+      if (importance[c] > 0 && target < below + importance[c]) {
+        k = c;
+        break;
+      }
+      below += importance[c];
+    }
+    w.u = std::clamp((target - below) / importance[k], 0.0f, kOneMinusEpsilon);
+    w.pmf *= importance[k] / sum;
+  }
+  const Group& group = group_of(w.node, k);
+  const int lane = k % kLanes;
+  if (group.next[lane] < 0) {
+    w.first = group.first[lane];
+    w.count = group.count[lane];
+    return Step::Leaf;
+  }
+  w.node = group.next[lane];
+  return Step::Down;
+}
+
+LightTree::Pick LightTree::pick_at_leaf(Walk& w) const {
+  const auto [slot, share] = pick_in_leaf(w.first, w.count, w.u);
+  return Pick{slot_item_[size_t(slot)], w.pmf * share, w.u};
+}
+
 std::optional<LightTree::Pick> LightTree::sample(const Vec3& p, const Vec3& n, float u) const {
   if (groups_.empty()) return std::nullopt;
-  int index = 0;
-  float pmf = 1.0f;
+  Walk w{.u = u};
   for (;;) {
-    const int children = groups_[size_t(index)].children;
-    int k = 0;
-    // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in
-    // sampling by power; what cannot reach p then contributes nothing.
-    if (children > 1) {
-      float importance[kWidth];
-      const float sum = judge(index, p, n, importance);
-      if (!(sum > 0)) return std::nullopt;
-      // The child whose share of [0, sum) holds u * sum; children of importance 0 are skipped,
-      // rounding cannot land on them.
-      const float target = u * sum;
-      float below = 0;
-      int last = 0;
-      for (int c = 0; c < children; ++c)
-        if (importance[c] > 0) last = c;
-      k = last;
-      for (int c = 0; c < last; ++c) {
-        if (importance[c] > 0 && target < below + importance[c]) {
-          k = c;
-          break;
-        }
-        below += importance[c];
-      }
-      u = std::clamp((target - below) / importance[k], 0.0f, kOneMinusEpsilon);
-      pmf *= importance[k] / sum;
-    }
-    const Group& group = group_of(index, k);
-    const int lane = k % kLanes;
-    if (group.next[lane] < 0) {
-      const auto [slot, share] = pick_in_leaf(group.first[lane], group.count[lane], u);
-      return Pick{slot_item_[size_t(slot)], pmf * share, u};
-    }
-    index = group.next[lane];
+    const Step step = descend(w, p, n);
+    if (step == Step::None) return std::nullopt;
+    if (step == Step::Leaf) return pick_at_leaf(w);
   }
+}
+
+// On a tree of many lights each level of a walk waits for its node to come from memory, and a walk
+// is a chain of such waits. Walks taken in turns, each asking for its next node as soon as it knows
+// it, wait for their nodes together. Each walk makes the same steps as sample() would.
+void LightTree::sample_many(const Vec3* p, const Vec3* n, const float* u, int count, std::optional<Pick>* out) const {
+  if (groups_.empty()) {
+    std::fill(out, out + count, std::nullopt);
+    return;
+  }
+  constexpr int kBatch = 8;
+  if (count > kBatch) {
+    for (int first = 0; first < count; first += kBatch)
+      sample_many(p + first, n + first, u + first, std::min(count - first, kBatch), out + first);
+    return;
+  }
+  Walk walks[kBatch];
+  int active[kBatch], leaves[kBatch];
+  int m = count, reached = 0;
+  for (int i = 0; i < count; ++i) {
+    walks[i].u = u[i];
+    active[i] = i;
+    out[i] = std::nullopt;
+  }
+  while (m > 0) {
+    int still = 0;
+    for (int j = 0; j < m; ++j) {
+      const int i = active[j];
+      const Step step = descend(walks[i], p[i], n[i]);
+      if (step == Step::Down) {
+        prefetch_node(walks[i].node);
+        active[still++] = i;
+      } else if (step == Step::Leaf) {
+        // The leaf's cumulative shares, which its pick searches, and its lights.
+        const size_t first = size_t(walks[i].first), last = first + size_t(walks[i].count) - 1;
+        __builtin_prefetch(&slot_cdf_[first]);
+        __builtin_prefetch(&slot_cdf_[last]);
+        __builtin_prefetch(&slot_item_[first]);
+        __builtin_prefetch(&slot_item_[last]);
+        leaves[reached++] = i;
+      }
+    }
+    m = still;
+  }
+  for (int j = 0; j < reached; ++j) out[leaves[j]] = pick_at_leaf(walks[leaves[j]]);
+}
+
+// Every cache line of a node's groups (two at most), ahead of its judging.
+void LightTree::prefetch_node(int node) const {
+  const size_t groups = std::min<size_t>(2, groups_.size() - size_t(node));
+  const char* bytes = reinterpret_cast<const char*>(&groups_[size_t(node)]);
+  for (size_t offset = 0; offset < groups * sizeof(Group); offset += 64) __builtin_prefetch(bytes + offset);
 }
 
 // The walk sample() makes toward `item`'s slot, with the same numbers in the same order.

@@ -30,10 +30,15 @@ class LightTree {
   // Walks down from the root choosing each child by importance at point p with normal n (zero:
   // no surface), reusing u; nothing when no light can reach p.
   std::optional<Pick> sample(const Vec3& p, const Vec3& n, float u) const;
+  // sample() for each of count shading points (p[i], n[i], u[i]) -> out[i], the same picks, with
+  // the walks interleaved so that their cache misses overlap (a packet's lanes on a large tree).
+  void sample_many(const Vec3* p, const Vec3* n, const float* u, int count, std::optional<Pick>* out) const;
   // The probability that sample(p, n, .) picks `item`.
   float pmf(int item, const Vec3& p, const Vec3& n) const;
   // Of the binary hierarchy as built; the walk takes about a third as many steps (see Group).
   int depth() const { return depth_; }
+  // The memory a walk reads its nodes from.
+  size_t node_bytes() const { return groups_.size() * sizeof(Group); }
 
  private:
   // The binary hierarchy is built first (the split search is binary), then collapsed: each node
@@ -82,6 +87,19 @@ class LightTree {
   float slot_probability(int first, int slot) const {
     return static_cast<float>(slot_cdf_[size_t(slot)] - slot_start(first, slot));
   }
+  // A walk from the root toward one light, a level at a time.
+  struct Walk {
+    int node = 0;  // the node it is at (its first group)
+    float pmf = 1.0f;
+    float u = 0;     // the draw, rescaled at each level to the chosen child's share
+    int first = -1;  // at a leaf: its lights are slots first .. first + count - 1
+    int count = 0;
+  };
+  enum class Step { Down, Leaf, None };
+  Step descend(Walk& w, const Vec3& p, const Vec3& n) const;
+  // The light a walk that reached its leaf picks there.
+  Pick pick_at_leaf(Walk& w) const;
+  void prefetch_node(int node) const;
   // The children's importance at (p, n) and their sum (not positive when none can light p).
   float judge(int node, const Vec3& p, const Vec3& n, float importance[kWidth]) const;
   // judge() four children at a time, one group after the other.

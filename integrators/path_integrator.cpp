@@ -26,7 +26,7 @@ struct PathIntegrator::Path {
   float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led to the current hit
   bool prev_delta = true;   // the camera ray counts as a delta event: no MIS for what it sees
   Vec3 prev_p;
-  Vec3 prev_n;  // the normal the previous vertex's BSDF took cosines about, for light-pick pmfs
+  Vec3 prev_n;  // the normal the previous vertex chose its light for (pick_normal), for light-pick pmfs
   Vec3 segment_start;  // where the current ray left a surface (a crossing included), for absorption
   MediumStack media;
   int depth = 0;     // scattering events so far
@@ -71,7 +71,14 @@ struct PathIntegrator::Arrival {
   const Vec2* sky_uv = nullptr;     // escaped to a map's sky: where it meets the map (EnvironmentLight::prefetch)
   const VertexSamples* draws = nullptr;  // the vertex's draws, where the path scatters (scatters_next)
   const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
+  const std::optional<Emitters::Pick>* light = nullptr;  // the light those draws chose, where li_packet chose it
 };
+
+// The normal a vertex's light is chosen for (a light tree weighs lights by the cosine about it):
+// the hit's shading normal, known before the BSDF is built, so that li_packet can choose the
+// lanes' lights together. Its sign does not matter (the tree takes |cos|); the pmf of the pick,
+// for MIS, takes the same normal.
+static const Vec3& pick_normal(const SurfaceHit& hit) { return hit.ns; }
 
 // Aiming is for surfaces with a non-delta lobe that only reflect: a transmitting one would need its
 // crossing (media, eta) worked out for a direction it did not sample.
@@ -94,10 +101,13 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                                                          const Bounce& bounce, const MediumStack& media,
                                                          const MaterialDesc& material, bool from_front,
                                                          const VertexSamples& u,
-                                                         const EnvironmentLight::Sample* sky) const {
+                                                         const EnvironmentLight::Sample* sky,
+                                                         const std::optional<Emitters::Pick>* light) const {
   const SceneDesc& desc = scene.desc();
+  const Emitters& emitters = scene.emitters();
   ShadowQuery q;
-  const EmitterSample ls = scene.emitters().sample(hit.p, bsdf.normal(), u.light_spare, u.light_point, sky);
+  const EmitterSample ls = light ? emitters.sample_light(*light, hit.p, u.light_spare, u.light_point, sky)
+                                 : emitters.sample(hit.p, pick_normal(hit), u.light_spare, u.light_point, sky);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -219,7 +229,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light);
+    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
     if (shadow.cast) {
       ++counters.shadow;
       shadow.contribution = beta * shadow.contribution;
@@ -260,7 +270,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
     // direct lighting), then the path ends.
     if (!bs->delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
     path.prev_p = hit.p;
-    path.prev_n = bsdf.normal();
+    path.prev_n = pick_normal(hit);
     if (bs->transmission) {
       path.media.cross(material, hit.material, from_front);
       if (material.has_volume()) path.eta_scale *= bs->eta * bs->eta;
@@ -386,6 +396,25 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       sky.sample(sky_draw, sky_draws, sky_samples);
       for (int j = 0; j < sky_draws; ++j) sky_light[sky_draw_lane[j]] = &sky_samples[j];
     }
+    // Where the light a draw chooses depends on the shading point (a light tree), the lanes' lights
+    // are chosen together: their walks down the tree, each a chain of cache misses on a large one,
+    // overlap. Lanes whose BSDF turns out to be a delta lobe leave theirs unused.
+    std::optional<Emitters::Pick> picked[kLanes];
+    const std::optional<Emitters::Pick>* light[kLanes] = {};
+    if (emitters.picks_ahead()) {
+      Vec3 pick_p[kLanes], pick_n[kLanes];
+      float pick_u[kLanes];
+      int pick_lane[kLanes], picks = 0;
+      for (int i = 0; i < m; ++i)
+        if (found[i] && scatters_next(paths[live[i]])) {
+          pick_p[picks] = hits[i].p;
+          pick_n[picks] = pick_normal(hits[i]);
+          pick_u[picks] = draws[i].light_point.x;
+          pick_lane[picks++] = i;
+        }
+      emitters.pick_many(pick_p, pick_n, pick_u, picks, picked);
+      for (int j = 0; j < picks; ++j) light[pick_lane[j]] = &picked[j];
+    }
 
     int s = 0, still = 0;
     for (int i = 0; i < m; ++i) {
@@ -395,6 +424,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         at.hit = &hits[i];
         at.draws = &draws[i];
         at.sky_light = sky_light[i];
+        at.light = light[i];
       } else if (sky.has_map()) {
         at.sky_uv = &sky_uv[i];
       }

@@ -5,16 +5,19 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "chi_square.h"
+#include "radiance_stats.h"
 #include "core/constants.h"
 #include "core/cpu_features.h"
 #include "core/emitters.h"
 #include "core/light_tree.h"
 #include "core/pcg32.h"
 #include "core/sampling.h"
+#include "integrators/path_integrator.h"
 #include "mixed_lights.h"
 #include "scene_builders.h"
 
@@ -132,6 +135,87 @@ TEST(LightTree, NeverMissesALightThatReachesThePoint) {
   EXPECT_GT(reachable, 1000);
 }
 
+// Emitters::pick_many chooses, for each shading point, the light sample() chooses there: quads and a
+// spot in the tree, and a constant sky beside it (chosen first, by power), in batches of every size.
+TEST(LightTree, EmittersPickTogetherWhatEachSampleChooses) {
+  Pcg32 rng(7, 8);
+  SceneDesc desc;
+  const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(1.0f));
+  for (int q = 0; q < 40; ++q)
+    test::add_quad(desc, random_in_box(rng, 4.0f), random_in_box(rng, 0.6f), random_in_box(rng, 0.6f), lamp);
+  PunctualLightDesc spot;
+  spot.type = LightType::Spot;
+  spot.position = Vec3(0, 0, 6);
+  spot.direction = Vec3(0, 0, -1);
+  spot.intensity = Rgb(30.0f);
+  desc.lights.push_back(spot);
+  desc.environment.present = true;
+  desc.environment.color = Rgb(0.2f);
+  const Emitters emitters(desc);
+  ASSERT_GT(emitters.tree().depth(), 2);
+  int sky = 0, tree = 0;
+  for (int round = 0; round < 300; ++round) {
+    const int count = 1 + round % 11;
+    Vec3 p[11], n[11];
+    float u_x[11];
+    for (int i = 0; i < count; ++i) {
+      p[i] = random_in_box(rng, 6.0f);
+      n[i] = random_direction(rng);
+      u_x[i] = rng.next_float();
+    }
+    std::optional<Emitters::Pick> picked[11];
+    emitters.pick_many(p, n, u_x, count, picked);
+    for (int i = 0; i < count; ++i) {
+      const float u_spare = rng.next_float();
+      const Vec2 u{u_x[i], rng.next_float()};
+      const EmitterSample alone = emitters.sample(p[i], n[i], u_spare, u);
+      const EmitterSample given = emitters.sample_light(picked[i], p[i], u_spare, u);
+      ASSERT_EQ(given.pdf, alone.pdf) << "round " << round << " point " << i;
+      EXPECT_EQ(given.emitter, alone.emitter);
+      EXPECT_EQ(given.wi, alone.wi);
+      EXPECT_EQ(given.p, alone.p);
+      EXPECT_EQ(given.incident, alone.incident);
+      (alone.infinite ? sky : tree) += alone.pdf > 0;
+    }
+  }
+  EXPECT_GT(sky, 50);
+  EXPECT_GT(tree, 500);
+}
+
+// A tree's pick depends on the shading point's normal, so next-event estimation and the MIS weight
+// of an emitter found by BSDF sampling must take the pick's probability about the same normal, or
+// their weights stop summing to one. A floor whose shading normals lean 50 degrees off its face,
+// lit by lamps all around (some near its geometric horizon, some near the shading normal's): direct
+// light along a fixed ray, chosen by the tree, must agree with choosing by power, which ignores
+// normals.
+TEST(LightTree, MultipleImportanceSamplingTakesThePicksOwnNormal) {
+  auto scene_for = [](LightSampling how) {
+    SceneDesc desc;
+    PrimitiveDesc floor;
+    floor.material = test::add_material(desc, Rgb(0.8f));
+    floor.positions = {Vec3(-5, 0, -5), Vec3(5, 0, -5), Vec3(5, 0, 5), Vec3(-5, 0, 5)};
+    floor.indices = {0, 2, 1, 0, 3, 2};  // facing up
+    const Vec3 leaning = normalize(Vec3(0, std::cos(0.87f), std::sin(0.87f)));
+    floor.normals = {leaning, leaning, leaning, leaning};
+    test::add_mesh(desc, std::move(floor));
+    const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(4.0f), true);
+    // Large and close, so that their light-sampling densities are of the order of the BSDF's and
+    // the MIS weights of both strategies matter.
+    const Vec3 at[] = {Vec3(-1, 0.2f, 1.5f), Vec3(-1, 0.2f, -1.5f), Vec3(1.5f, 0.2f, -1), Vec3(-2, 1.5f, -1),
+                       Vec3(-1, 2, 0)};
+    for (const Vec3& c : at) test::add_quad(desc, c, Vec3(2, 0, 0), Vec3(0, 1.2f, 0.8f), lamp);
+    return std::make_unique<Scene>(std::move(desc), nullptr, how);
+  };
+  const auto tree = scene_for(LightSampling::Tree), power = scene_for(LightSampling::Power);
+  ASSERT_GT(tree->emitters().tree().depth(), 0);
+  const PathIntegrator direct(1, 1 << 20);
+  const auto ray_at = [](int) { return Ray{Vec3(0.1f, 1.5f, 0.2f), normalize(Vec3(0.05f, -1, 0.02f))}; };
+  const test::RunningStats by_tree = test::radiance_stats(*tree, direct, 200000, {.seed = 3, .channel = 1}, ray_at);
+  const test::RunningStats by_power = test::radiance_stats(*power, direct, 200000, {.seed = 4, .channel = 1}, ray_at);
+  const double se = std::hypot(by_tree.standard_error(), by_power.standard_error());
+  EXPECT_NEAR(by_tree.mean(), by_power.mean(), test::kSigmas * se) << "standard error " << se;
+}
+
 // Choosing by power builds no tree (a large emissive mesh would pay seconds for it at start-up)
 // and chooses every light by its power alone, wherever it is seen from.
 TEST(LightTree, IsNotBuiltWhenLightsAreChosenByPower) {
@@ -228,6 +312,51 @@ TEST(LightTree, HoldsUpOnDegenerateSets) {
   EXPECT_TRUE(none.empty());
   EXPECT_FALSE(none.sample(Vec3(), Vec3(), 0.5f).has_value());
   EXPECT_EQ(none.pmf(1, Vec3(), Vec3()), 0.0f);
+}
+
+// A packet's lanes pick their lights together, their walks interleaved level by level: each pick
+// must be the one sample() makes alone, bit for bit, in batches of every size (more than eight
+// are taken eight at a time), where some walks find no light and some end at a leaf of one light
+// or of lights alike, and on a tree that is empty or a single leaf.
+TEST(LightTree, PicksTakenTogetherAreThePicksTakenAlone) {
+  Pcg32 rng(41, 42);
+  std::vector<LightBounds> lights = mixed_lights(rng, 3000);
+  for (size_t k = 100; k < 200; ++k) lights[k] = lights[99];  // a leaf of lights alike
+  std::vector<LightBounds> alike(5, lights[99]);
+  const LightTree trees[] = {LightTree(lights), LightTree(alike), LightTree(std::vector<LightBounds>(2))};
+  ASSERT_GT(trees[0].depth(), 5);
+  ASSERT_EQ(trees[1].depth(), 0);
+  ASSERT_TRUE(trees[2].empty());
+  int found = 0, missed = 0;
+  for (const LightTree& tree : trees)
+    for (int round = 0; round < 400; ++round) {
+      const int count = 1 + round % 13;
+      Vec3 p[13], n[13];
+      float u[13];
+      for (int i = 0; i < count; ++i) {
+        // Some points far outside the lights, facing away from all of them: nothing reaches them.
+        const bool away = rng.next_float() < 0.2f;
+        p[i] = away ? Vec3(0, 40, 0) : random_in_box(rng, 7.0f);
+        n[i] = away ? Vec3(0, 1, 0) : (i % 5 == 0 ? Vec3() : random_direction(rng));
+        u[i] = rng.next_float();
+      }
+      std::optional<LightTree::Pick> together[13];
+      tree.sample_many(p, n, u, count, together);
+      for (int i = 0; i < count; ++i) {
+        const std::optional<LightTree::Pick> alone = tree.sample(p[i], n[i], u[i]);
+        ASSERT_EQ(together[i].has_value(), alone.has_value()) << "round " << round << " lane " << i;
+        if (!alone) {
+          ++missed;
+          continue;
+        }
+        ++found;
+        EXPECT_EQ(together[i]->item, alone->item);
+        EXPECT_EQ(std::bit_cast<uint32_t>(together[i]->pmf), std::bit_cast<uint32_t>(alone->pmf));
+        EXPECT_EQ(std::bit_cast<uint32_t>(together[i]->remapped), std::bit_cast<uint32_t>(alone->remapped));
+      }
+    }
+  EXPECT_GT(found, 2000);
+  EXPECT_GT(missed, 200);
 }
 
 // The tree judges a node's children four at a time in SIMD lanes; each lane must give the bits the

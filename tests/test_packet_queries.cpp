@@ -102,17 +102,9 @@ TEST(PacketQueries, AgreeWithSingleRaysLaneByLane) {
   EXPECT_GT(blocked, 100);
 }
 
-// The path tracer traces packets of paths in lockstep (their rays and shadow rays as Embree
-// packets); every lane must come out exactly as the same path traced alone, AOVs included, through
-// glass with absorption (a medium stack), alpha, spheres, an emitter and instanced meshes.
-TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
-  SceneDesc desc = packet_test_scene();
-  const int glass = test::add_glass(desc, 1.5f, Rgb(0.6f, 0.8f, 0.9f));
-  test::add_sphere(desc, Vec3(0.6f, 0, 0.6f), 0.4f, glass);
-  test::add_box(desc, Vec3(-1.2f, 0.2f, 0.9f), Vec3(-0.6f, 0.8f, 1.5f), glass);
-  const int light = test::add_material(desc, Rgb(0.0f), Rgb(8.0f));
-  test::add_quad(desc, Vec3(-0.5f, 1.99f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), light);  // facing down
-  const Scene scene(std::move(desc), &material_alpha);
+// Every lane of a packet of paths traced in lockstep must come out exactly as the same path traced
+// alone, AOVs included.
+void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
   const PathIntegrator path(8, 3);
   Pcg32 rng(31, 32);
   RayCounters packed_counters, alone_counters;
@@ -152,6 +144,53 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   EXPECT_EQ(packed_counters.shadow, alone_counters.shadow);
   EXPECT_GT(packed_counters.shadow, 1000u);
   EXPECT_GT(packed_counters.extension, 1000u);
+}
+
+// Paths in lockstep through glass with absorption (a medium stack), alpha, spheres, an emitter and
+// instanced meshes.
+SceneDesc lockstep_test_scene() {
+  SceneDesc desc = packet_test_scene();
+  const int glass = test::add_glass(desc, 1.5f, Rgb(0.6f, 0.8f, 0.9f));
+  test::add_sphere(desc, Vec3(0.6f, 0, 0.6f), 0.4f, glass);
+  test::add_box(desc, Vec3(-1.2f, 0.2f, 0.9f), Vec3(-0.6f, 0.8f, 1.5f), glass);
+  return desc;
+}
+
+TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
+  SceneDesc desc = lockstep_test_scene();
+  const int light = test::add_material(desc, Rgb(0.0f), Rgb(8.0f));
+  test::add_quad(desc, Vec3(-0.5f, 1.99f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), light);  // facing down
+  const Scene scene(std::move(desc), &material_alpha);
+  ASSERT_FALSE(scene.emitters().picks_ahead());
+  expect_paths_in_lockstep_match_paths_alone(scene);
+}
+
+// The same under a light tree larger than the caches, where the lanes choose their lights together
+// (Emitters::pick_many): a ceiling of 80,000 small emissive triangles, none sharing an edge (so each
+// is a light of its own), in four colours.
+TEST(PacketQueries, PathsInLockstepMatchPathsAloneUnderALargeLightTree) {
+  SceneDesc desc = lockstep_test_scene();
+  int lamp[4];
+  for (int k = 0; k < 4; ++k) lamp[k] = test::add_material(desc, Rgb(0.0f), Rgb(2.0f + float(k), 3.0f, 4.0f - float(k)));
+  constexpr int kSide = 284;
+  PrimitiveDesc ceiling[4];
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      PrimitiveDesc& prim = ceiling[(x + 2 * y) % 4];
+      const float cell = 3.8f / kSide;
+      const Vec3 c(-1.9f + cell * float(x), 1.98f, -1.9f + cell * float(y));
+      const uint32_t first = uint32_t(prim.positions.size());
+      prim.positions.insert(prim.positions.end(), {c, c + Vec3(0.8f * cell, 0, 0), c + Vec3(0, 0, 0.8f * cell)});
+      prim.indices.insert(prim.indices.end(), {first, first + 1, first + 2});  // facing down
+    }
+  for (int k = 0; k < 4; ++k) {
+    ceiling[k].material = lamp[k];
+    test::add_mesh(desc, std::move(ceiling[k]));
+  }
+  const Scene scene(std::move(desc), &material_alpha);
+  ASSERT_EQ(scene.emitters().size(), size_t(kSide) * kSide);
+  ASSERT_TRUE(scene.emitters().picks_ahead()) << scene.emitters().tree().node_bytes() << " bytes of nodes";
+  expect_paths_in_lockstep_match_paths_alone(scene);
 }
 
 }  // namespace

@@ -344,7 +344,7 @@ std::pair<int, float> LightTree::pick_in_leaf(int first, int count, float& u) co
 
 // One level of a walk: judges the children of the walk's node and moves into the one u chooses,
 // or stops at a leaf (Step::Leaf, its lights in w.first, w.count) or where no light reaches p.
-LightTree::Step LightTree::descend(Walk& w, const Vec3& p, const Vec3& n) const {
+[[gnu::always_inline]] inline LightTree::Step LightTree::descend(Walk& w, const Vec3& p, const Vec3& n) const {
   const int children = groups_[size_t(w.node)].children;
   int k = 0;
   // A root leaf (one light, or lights alike) is not judged: it is picked wherever it is, as in

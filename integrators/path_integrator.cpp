@@ -355,6 +355,8 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   float shadow_iors[kLanes];
   Rgb through[kLanes];
   int shadow_lane[kLanes];
+  std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
+  const std::optional<Emitters::Pick>* light[kLanes] = {};
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
@@ -399,12 +401,11 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     // Where the light a draw chooses depends on the shading point (a light tree), the lanes' lights
     // are chosen together: their walks down the tree, each a chain of cache misses on a large one,
     // overlap. Lanes whose BSDF turns out to be a delta lobe leave theirs unused.
-    std::optional<Emitters::Pick> picked[kLanes];
-    const std::optional<Emitters::Pick>* light[kLanes] = {};
     if (emitters.picks_ahead()) {
       Vec3 pick_p[kLanes], pick_n[kLanes];
       float pick_u[kLanes];
       int pick_lane[kLanes], picks = 0;
+      std::fill(light, light + m, nullptr);
       for (int i = 0; i < m; ++i)
         if (found[i] && scatters_next(paths[live[i]])) {
           pick_p[picks] = hits[i].p;

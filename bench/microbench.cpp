@@ -249,6 +249,7 @@ void BM_LightTreePick(benchmark::State& state) {
     benchmark::DoNotOptimize(picks);
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * batch);
+  state.counters["node_bytes"] = double(tree.node_bytes());
 }
 BENCHMARK(BM_LightTreePick)->ArgsProduct({{32, 128, 1024}, {1, 8}});
 

@@ -60,8 +60,8 @@ class Emitters {
   };
   // Whether choosing the lights of several shading points together (pick_many) pays: where the
   // light depends on the point (a light tree) and the tree is larger than the caches, so that the
-  // walks wait for their nodes together. On a tree that fits in them (up to about 10^4 lights) a
-  // walk waits for nothing, and the shading around each walk hides its chain of square roots.
+  // walks wait for their nodes together. On a tree that fits in them (16,384 lights take 1.6 MB of
+  // nodes) a walk waits for little, and the shading around each walk hides its chain of square roots.
   bool picks_ahead() const { return tree_pays() && tree_.node_bytes() >= kPickAheadBytes; }
   static constexpr size_t kPickAheadBytes = size_t(4) << 20;
   // The light sample(ref[i], ref_n[i], ., u) chooses where u.x = u_x[i], for count shading points

@@ -21,8 +21,9 @@ std::vector<std::string> module_candidates() {
 #ifdef PRISM_IMAGE_CODECS_MODULE
   // Held in an array of a fixed size, so that the build folder's name does not move the constants
   // laid out after it: two builds of the same source in folders whose paths differ in length timed
-  // 4% apart on the Cornell box (a hot constant's address and a hot stack slot's share their low
-  // twelve bits in one and not the other), which no A/B comparison of two builds should measure.
+  // 4% apart on the Cornell box (likely 4K aliasing between a hot constant and a hot stack slot in
+  // one layout and not the other; unconfirmed, no performance counters), which no A/B comparison
+  // of two builds should measure (docs/PERFORMANCE.md, session 40).
   static constexpr char kBuildModule[4096] = PRISM_IMAGE_CODECS_MODULE;
   if (paths.empty() || paths.front() != kBuildModule) paths.push_back(kBuildModule);
 #endif

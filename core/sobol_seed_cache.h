@@ -42,6 +42,8 @@ class SobolSeedCache {
       --e.users;
     }
     ++starts_;
+    // Consecutive samples are mostly of one pixel: the entry taken last first.
+    if (last_ >= 0 && entries_[size_t(last_)].x == x && entries_[size_t(last_)].y == y) return claim(last_);
     int unused = -1;
     for (size_t i = 0; i < entries_.size(); ++i) {
       Entry& e = entries_[i];
@@ -87,12 +89,14 @@ class SobolSeedCache {
     Entry& e = entries_[size_t(i)];
     ++e.users;
     e.last_start = starts_;
+    last_ = i;
     return i;
   }
 
   uint64_t seed_;
   std::vector<Entry> entries_;
   uint64_t starts_ = 0;
+  int last_ = -1;  // the entry claimed last
 };
 
 }  // namespace prism

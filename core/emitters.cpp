@@ -439,18 +439,43 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 
       return s;
     }
   }
-  // By area: a quad's unit square maps linearly onto it, half A below the diagonal u + v = 1.
-  EmitterSample s;
-  if (!e.quad) {
-    const Vec2 b = sample_uniform_triangle(u);
-    s = triangle_point(e, 0, {b.x, b.y, 1.0f - b.x - b.y});
-  } else if (u.x + u.y <= 1) {
-    s = triangle_point(e, 0, {1.0f - u.x - u.y, u.x, u.y});
-  } else {
-    s = triangle_point(e, 1, {1.0f - u.y, u.x + u.y - 1.0f, 1.0f - u.x});
-  }
+  Barycentrics b;
+  const int half = area_point_draw(e, u, b);
+  EmitterSample s = triangle_point(e, half, b);
   s.pdf = area_to_solid_angle(1.0f / e.area, ref, s.p, s.n);
   return s;
+}
+
+// By area: a quad's unit square maps linearly onto it, half A below the diagonal u + v = 1.
+int Emitters::area_point_draw(const Emitter& e, Vec2 u, Barycentrics& b) {
+  if (!e.quad) {
+    const Vec2 t = sample_uniform_triangle(u);
+    b = {t.x, t.y, 1.0f - t.x - t.y};
+    return 0;
+  }
+  if (u.x + u.y <= 1) {
+    b = {1.0f - u.x - u.y, u.x, u.y};
+    return 0;
+  }
+  b = {1.0f - u.y, u.x + u.y - 1.0f, 1.0f - u.x};
+  return 1;
+}
+
+Emitters::Draw Emitters::area_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n,
+                                   float u_spare, Vec2 u, AreaDraw& out) const {
+  const std::optional<Pick> picked = chosen ? *chosen : pick(ref, ref_n, u.x);
+  if (!picked) return Draw::kNothing;
+  if (picked->index >= emitters_.size()) return Draw::kOther;  // punctual or the environment
+  const Emitter& e = emitters_[picked->index];
+  if (e.sphere || e.textured) return Draw::kOther;
+  const float plane_distance = dot(ref - e.p0, e.normal);
+  if (!(e.area > 0) || !faces(e, plane_distance)) return Draw::kNothing;
+  if (near_enough(e, plane_distance)) return Draw::kOther;  // perhaps by solid angle
+  u.x = point_draw(*picked, u_spare);
+  out.light = &e;
+  out.half = area_point_draw(e, u, out.b);
+  out.pmf = picked->pmf;
+  return Draw::kByArea;
 }
 
 float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {

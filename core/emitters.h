@@ -79,6 +79,51 @@ class Emitters {
   // sample() where the light was chosen already: `chosen` is pick_many's choice for (ref, ref_n, u.x).
   EmitterSample sample_light(const std::optional<Pick>& chosen, const Vec3& ref, float u_spare, Vec2 u,
                              const EnvironmentLight::Sample* sky = nullptr) const;
+  // An area light as sample_light samples it.
+  struct Emitter {
+    bool sphere = false;
+    bool quad = false;   // p0 + u (p1 - p0) + v (p2 - p0) over the unit square: halves A and B
+    int instance = -1;   // triangles: instance and primitive, to look up vertex attributes
+    int primitive = -1;
+    uint32_t index = 0;  // triangle (a quad's half A) within the primitive, or sphere index
+    uint32_t index_b = 0;  // quads: the triangle that is half B
+    int material = -1;
+    // World-space corners, front face counter-clockwise (winding x handedness). Half A is
+    // (p0, p1, p2); a quad's half B is (p1, p3, p2), p3 its own fourth corner, within quad_slack
+    // of p1 + p2 - p0.
+    Vec3 p0, p1, p2, p3;
+    float quad_slack = 0;
+    uint8_t corner[6] = {0, 1, 2, 0, 1, 2};  // the file's corner (0-2) of each half's corners, A then B
+    Vec3 normal;         // triangles and quads: unit front-face normal
+    float area = 0;
+    float longest_edge2 = 0;  // triangles and quads: squared length of a half's longest edge
+    bool textured = false;  // the emission varies over the surface: uvs are needed
+    bool double_sided = false;  // triangles and quads: emits from the back face too
+  };
+
+  // A point sample_light would place by area on an untextured triangle or quad (far from it, see
+  // near_enough), as triangle_point takes it, for next-event estimation in SIMD lanes
+  // (integrators/lane_direct_light.h), which finishes the sample bit for bit as sample_light does.
+  struct AreaDraw {
+    const Emitter* light = nullptr;
+    int half = 0;     // of a quad: 0 (A) or 1 (B)
+    Barycentrics b;   // the point's, in that half
+    float pmf = 0;    // of choosing the light
+    // The half's corners, as triangle_point takes them.
+    const Vec3& c0() const { return half == 0 ? light->p0 : light->p1; }
+    const Vec3& c1() const { return half == 0 ? light->p1 : light->p3; }
+    const Vec3& c2() const { return light->p2; }
+  };
+  enum class Draw {
+    kNothing,  // sample_light's pdf is 0: no light, its back, or no area
+    kByArea,   // `out` holds the point's draw
+    kOther,    // another kind of sample: sample_light makes it
+  };
+  // What sample_light(chosen, ref, u_spare, u) makes of this draw; `chosen` null: the light that
+  // sample(ref, ref_n, u_spare, u) would choose.
+  Draw area_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
+                 AreaDraw& out) const;
+
   // Where the draw (u_spare, u) chooses a map's sky, and the sky has no portals, the draw it hands
   // the map: a light is chosen before the shading point is known only there (lights at infinity
   // are chosen by power). So a packet's sky samples can be drawn together, ahead of shading.
@@ -109,26 +154,6 @@ class Emitters {
   LightSampling light_sampling() const { return how_; }
 
  private:
-  struct Emitter {
-    bool sphere = false;
-    bool quad = false;   // p0 + u (p1 - p0) + v (p2 - p0) over the unit square: halves A and B
-    int instance = -1;   // triangles: instance and primitive, to look up vertex attributes
-    int primitive = -1;
-    uint32_t index = 0;  // triangle (a quad's half A) within the primitive, or sphere index
-    uint32_t index_b = 0;  // quads: the triangle that is half B
-    int material = -1;
-    // World-space corners, front face counter-clockwise (winding x handedness). Half A is
-    // (p0, p1, p2); a quad's half B is (p1, p3, p2), p3 its own fourth corner, within quad_slack
-    // of p1 + p2 - p0.
-    Vec3 p0, p1, p2, p3;
-    float quad_slack = 0;
-    uint8_t corner[6] = {0, 1, 2, 0, 1, 2};  // the file's corner (0-2) of each half's corners, A then B
-    Vec3 normal;         // triangles and quads: unit front-face normal
-    float area = 0;
-    float longest_edge2 = 0;  // triangles and quads: squared length of a half's longest edge
-    bool textured = false;  // the emission varies over the surface: uvs are needed
-    bool double_sided = false;  // triangles and quads: emits from the back face too
-  };
   Emitter make_triangle(const InstanceDesc& inst, int instance, const PrimitiveDesc& prim, int primitive,
                         uint32_t t) const;
   // Makes `a` the quad of a and the triangle b that follows it, when they form one.
@@ -141,6 +166,8 @@ class Emitters {
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
   // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);
+  // The half (0: A, 1: B) and barycentrics a draw u places a point at by area.
+  static int area_point_draw(const Emitter& e, Vec2 u, Barycentrics& b);
   // The point at barycentrics b of half A (0) or B (1).
   EmitterSample triangle_point(const Emitter& e, int half, const Barycentrics& b) const;
   float triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;

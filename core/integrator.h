@@ -21,7 +21,10 @@ class Integrator {
   // reports the path's first hit and its light split by kind (see AovSample).
   virtual RadianceSample li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, RayCounters& counters,
                             AovSample* aov = nullptr) const = 0;
-  // The same for n camera rays at once, lane k drawing from samplers[k] and reporting to aovs[k]
+  // The renderer hands li_packet this many camera rays at a time (four of Embree's packets): the
+  // more paths in lockstep, the fuller the packets and SIMD lanes their survivors fill.
+  static constexpr int kPathsInLockstep = 32;
+  // li for n camera rays at once, lane k drawing from samplers[k] and reporting to aovs[k]
   // (aovs null: no AOVs); out[k] is what li would return for lane k. The default traces the lanes
   // one after another; integrators that trace them in lockstep share Embree's packet queries
   // between them.

@@ -39,7 +39,7 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
 
   // A tile's samples go to the integrator in packets of consecutive (pixel, sample) pairs, in the
   // order a one-by-one loop would take them, and reach the film in that order.
-  constexpr int kLanes = Scene::kPacketSize;
+  constexpr int kLanes = Integrator::kPathsInLockstep;
   auto render_tile = [&](int tile_index) {
     const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);

@@ -45,6 +45,7 @@ struct PathIntegrator::ShadowQuery {
   Ray ray;
   Rgb contribution;
   bool cast = false;      // false: there is no shadow ray to trace
+  bool queued = false;    // the query waits for lane_direct_light, which sets ray, contribution and cast
   Rgb* target = nullptr;
   float medium_ior = 1;  // of the medium the ray travels in, for the sheets it may cross
 };
@@ -141,6 +142,29 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
+bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf,
+                                        const Bounce& bounce, const Path& path, const MaterialDesc& material,
+                                        const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
+                                        LaneLightBatch& lanes) const {
+  // lane_direct_light's case: no caster aims the bounce, nothing absorbs on either side of the
+  // surface (beer_lambert is 1), and the lobe is Lambertian's alone.
+  if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
+  const std::optional<Bsdf::LambertianLobe> lobe = bsdf.lambertian_lobe();
+  if (!lobe) return false;
+  Emitters::AreaDraw draw;
+  switch (scene.emitters().area_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
+    case Emitters::Draw::kNothing: return true;
+    case Emitters::Draw::kOther: return false;
+    case Emitters::Draw::kByArea: break;
+  }
+  const MaterialDesc& light = scene.desc().material(draw.light->material);
+  lanes.add(hit.p, hit.p_error, hit.ng, hit.triangle, *lobe, path.beta, draw,
+            light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
+  shadow.queued = true;
+  shadow.medium_ior = 1.0f;
+  return true;
+}
+
 bool PathIntegrator::scatters_next(const Path& path) const {
   return path.depth < max_depth_ && !path.last_vertex;
 }
@@ -152,14 +176,14 @@ bool PathIntegrator::scatters_next(const Path& path) const {
 // stratified across them (pbrt-v4 does the same). li_packet draws them (at.draws) before the lanes
 // shade.
 bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
-                             RayCounters& counters) const {
+                             RayCounters& counters, LaneLightBatch* lanes) const {
   const SurfaceHit* found = at.hit;
   const Vec2* sky_uv = at.sky_uv;
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   const int depth = path.depth;
   Rgb& beta = path.beta;
-  shadow.cast = false;
+  shadow.cast = shadow.queued = false;
   if (!found) {
     // Escaped to the sky: the environment, MIS-weighted against light sampling after a
     // non-delta bounce; inside an absorbing medium the infinite segment absorbs completely.
@@ -229,12 +253,14 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
-    if (shadow.cast) {
-      ++counters.shadow;
-      shadow.contribution = beta * shadow.contribution;
-      shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
+    if (!(lanes && queue_direct_light(scene, hit, bsdf, bounce, path, material, u, at, shadow, *lanes))) {
+      shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
+      if (shadow.cast) {
+        ++counters.shadow;
+        shadow.contribution = beta * shadow.contribution;
+      }
     }
+    shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
@@ -329,8 +355,8 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
 
 void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
                                RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
-  constexpr int kLanes = Scene::kPacketSize;
-  if (n > kLanes) {  // eight paths at a time
+  constexpr int kLanes = kPathsInLockstep;
+  if (n > kLanes) {
     for (int first = 0; first < n; first += kLanes)
       li_packet(scene, camera_rays + first, samplers + first, std::min(n - first, kLanes), counters,
                 aovs ? aovs + first : nullptr, out + first);
@@ -355,8 +381,19 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   float shadow_iors[kLanes];
   Rgb through[kLanes];
   int shadow_lane[kLanes];
+  static_assert(LaneLightBatch::kLanes >= kLanes);
+  LaneLightBatch lane_lights;
+  LaneLightResult lane_results[kLanes];
+  int request_lane[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
   const std::optional<Emitters::Pick>* light[kLanes] = {};
+  // Each round's per-lane values, set for the round's live lanes before they are read.
+  Vec2 sky_uv[kLanes];
+  VertexSamples draws[kLanes];
+  Vec2 sky_draw[kLanes];
+  int sky_draw_lane[kLanes];
+  EnvironmentLight::Sample sky_samples[kLanes];
+  const EnvironmentLight::Sample* sky_light[kLanes];
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
@@ -368,7 +405,6 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     // in turn, overlap.
     const Emitters& emitters = scene.emitters();
     const EnvironmentLight& sky = emitters.environment();
-    Vec2 sky_uv[kLanes];
     if (scene.features().textures || sky.has_map())
       for (int i = 0; i < m; ++i) {
         if (!found[i])
@@ -378,9 +414,6 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       }
     // The vertices' draws, which do not depend on what a lane finds there, come first too: where
     // they choose a map's sky for the light sample, the lanes' sky samples are drawn together.
-    VertexSamples draws[kLanes];
-    Vec2 sky_draw[kLanes];
-    int sky_draw_lane[kLanes];
     int sky_draws = 0;
     for (int i = 0; i < m; ++i) {
       Path& path = paths[live[i]];
@@ -392,8 +425,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         sky_draw_lane[sky_draws++] = i;
       }
     }
-    EnvironmentLight::Sample sky_samples[kLanes];
-    const EnvironmentLight::Sample* sky_light[kLanes] = {};
+    std::fill(sky_light, sky_light + m, nullptr);
     if (sky_draws > 0) {
       sky.sample(sky_draw, sky_draws, sky_samples);
       for (int j = 0; j < sky_draws; ++j) sky_light[sky_draw_lane[j]] = &sky_samples[j];
@@ -417,7 +449,8 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       for (int j = 0; j < picks; ++j) light[pick_lane[j]] = &picked[j];
     }
 
-    int s = 0, still = 0;
+    int still = 0;
+    lane_lights.clear();
     for (int i = 0; i < m; ++i) {
       const int k = live[i];
       Arrival at;
@@ -429,14 +462,30 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       } else if (sky.has_map()) {
         at.sky_uv = &sky_uv[i];
       }
-      const bool goes_on = advance(scene, paths[k], at, shadows[i], counters);
+      const bool goes_on =
+          advance(scene, paths[k], at, shadows[i], counters, lane_direct_light_ ? &lane_lights : nullptr);
+      if (shadows[i].queued) request_lane[lane_lights.size() - 1] = i;
+      if (goes_on) live[still++] = k;
+    }
+    // The Lambertian vertices' light samples, in SIMD lanes.
+    if (lane_lights.size() > 0) {
+      lane_direct_light(lane_lights, lane_results);
+      for (int j = 0; j < lane_lights.size(); ++j) {
+        ShadowQuery& q = shadows[request_lane[j]];
+        q.cast = lane_results[j].cast;
+        if (!q.cast) continue;
+        q.ray = lane_results[j].ray;
+        q.contribution = lane_results[j].contribution;
+        ++counters.shadow;
+      }
+    }
+    int s = 0;
+    for (int i = 0; i < m; ++i)
       if (shadows[i].cast) {
         shadow_rays[s] = shadows[i].ray;
         shadow_iors[s] = shadows[i].medium_ior;
         shadow_lane[s++] = i;
       }
-      if (goes_on) live[still++] = k;
-    }
     shadow_transmittance(scene, shadow_rays, shadow_iors, s, through, counters);
     for (int j = 0; j < s; ++j)
       if (!is_black(through[j])) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution * through[j];

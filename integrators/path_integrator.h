@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/integrator.h"
+#include "integrators/lane_direct_light.h"
 #include "integrators/medium_stack.h"
 #include "materials/bsdf.h"
 
@@ -30,6 +31,10 @@ class PathIntegrator final : public Integrator {
   // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
+  // Whether li_packet estimates direct light at Lambertian vertices lit by area-sampled triangles
+  // and quads in SIMD lanes (lane_direct_light), on by default. Either way the images are the same
+  // bits; off serves tests and measurements.
+  void set_lane_direct_light(bool on) { lane_direct_light_ = on; }
 
  private:
   struct Path;
@@ -42,7 +47,16 @@ class PathIntegrator final : public Integrator {
   // One bounce of a path where its ray arrived (a surface or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
   // the path ends here.
-  bool advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters) const;
+  // lanes: where next-event estimation may go to lane_direct_light instead of direct_light
+  // (ShadowQuery::queued).
+  bool advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
+               LaneLightBatch* lanes = nullptr) const;
+  // Next-event estimation by lane_direct_light where the vertex and its light draw allow it: adds
+  // a lane to `lanes` (true, shadow.queued) or finds there is no light to sample (true); false:
+  // direct_light's case.
+  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,
+                          const Path& path, const MaterialDesc& material, const VertexSamples& u, const Arrival& at,
+                          ShadowQuery& shadow, LaneLightBatch& lanes) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
   // sky, light: the light sample's sky direction and the light, when the caller drew them
@@ -66,6 +80,7 @@ class PathIntegrator final : public Integrator {
   int max_diffuse_depth_;
   float clamp_indirect_;
   float caster_share_;
+  bool lane_direct_light_ = true;
 };
 
 }  // namespace prism

@@ -4,6 +4,7 @@
 // skip the triangle they leave.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <vector>
 
 #include "core/pcg32.h"
@@ -108,7 +109,7 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
   const PathIntegrator path(8, 3);
   Pcg32 rng(31, 32);
   RayCounters packed_counters, alone_counters;
-  constexpr int kMaxPaths = 2 * Scene::kPacketSize + 3;  // more than a packet: traced eight at a time
+  constexpr int kMaxPaths = Integrator::kPathsInLockstep + 3;  // more than li_packet takes in lockstep
   for (int round = 0; round < 300; ++round) {
     const int n = 1 + round % kMaxPaths;
     Ray rays[kMaxPaths];
@@ -146,6 +147,46 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
   EXPECT_GT(packed_counters.extension, 1000u);
 }
 
+// The same paths with next-event estimation in SIMD lanes (lane_direct_light) and without: the
+// same bits, lane by lane, and the same rays counted. Returns how many shadow rays were cast.
+uint64_t expect_lane_direct_light_matches_direct_light(const Scene& scene, int rounds = 200) {
+  PathIntegrator lanes(8, 3), alone(8, 3);
+  alone.set_lane_direct_light(false);
+  Pcg32 rng(41, 42);
+  RayCounters lane_counters, alone_counters;
+  constexpr int kMaxPaths = Integrator::kPathsInLockstep + 3;
+  for (int round = 0; round < rounds; ++round) {
+    const int n = 1 + round % kMaxPaths;
+    Ray rays[kMaxPaths];
+    std::vector<SobolSampler> lane_samplers(kMaxPaths, SobolSampler(7)), alone_samplers(kMaxPaths, SobolSampler(7));
+    Sampler *lane_sampler[kMaxPaths], *alone_sampler[kMaxPaths];
+    AovSample lane_aov[kMaxPaths], alone_aov[kMaxPaths];
+    AovSample *lane_aovs[kMaxPaths], *alone_aovs[kMaxPaths];
+    for (int k = 0; k < n; ++k) {
+      rays[k] = Ray{Vec3(3.6f * rng.next_float() - 1.8f, 3.6f * rng.next_float() - 1.8f, 1.9f),
+                    sample_uniform_sphere({rng.next_float(), rng.next_float()})};
+      lane_samplers[k].start_pixel_sample(round, 1, uint64_t(k));
+      alone_samplers[k].start_pixel_sample(round, 1, uint64_t(k));
+      lane_sampler[k] = &lane_samplers[k];
+      alone_sampler[k] = &alone_samplers[k];
+      lane_aovs[k] = &lane_aov[k];
+      alone_aovs[k] = &alone_aov[k];
+    }
+    RadianceSample lane_out[kMaxPaths], alone_out[kMaxPaths];
+    lanes.li_packet(scene, rays, lane_sampler, n, lane_counters, lane_aovs, lane_out);
+    alone.li_packet(scene, rays, alone_sampler, n, alone_counters, alone_aovs, alone_out);
+    for (int k = 0; k < n; ++k) {
+      EXPECT_EQ(lane_out[k].radiance, alone_out[k].radiance) << "round " << round << " lane " << k;
+      EXPECT_EQ(lane_aov[k].direct, alone_aov[k].direct) << "round " << round << " lane " << k;
+      EXPECT_EQ(lane_aov[k].indirect, alone_aov[k].indirect) << "round " << round << " lane " << k;
+    }
+    if (::testing::Test::HasFailure()) return 0;
+  }
+  EXPECT_EQ(lane_counters.extension, alone_counters.extension);
+  EXPECT_EQ(lane_counters.shadow, alone_counters.shadow);
+  return lane_counters.shadow;
+}
+
 // Paths in lockstep through glass with absorption (a medium stack), alpha, spheres, an emitter and
 // instanced meshes.
 SceneDesc lockstep_test_scene() {
@@ -163,6 +204,118 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   const Scene scene(std::move(desc), &material_alpha);
   ASSERT_FALSE(scene.emitters().picks_ahead());
   expect_paths_in_lockstep_match_paths_alone(scene);
+}
+
+// Next-event estimation in SIMD lanes gives direct_light's bits: Lambertian walls and blocks lit by
+// a quad seen from far and near (where it is sampled by solid angle instead), from behind (nothing
+// to sample), by a double-sided triangle, by a textured quad (not the lanes' case), through glass
+// with absorption (not theirs either) and beside alpha-blended sheets.
+TEST(LaneDirectLight, GivesDirectLightsBitsLaneByLane) {
+  SceneDesc desc = lockstep_test_scene();
+  const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(8.0f, 6.0f, 4.0f));
+  test::add_quad(desc, Vec3(-0.5f, 1.99f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), lamp);  // facing down
+  const int both_faces = test::add_material(desc, Rgb(0.0f), Rgb(1.0f, 3.0f, 2.0f), true);
+  PrimitiveDesc triangle;
+  triangle.positions = {Vec3(1.9f, -1.5f, -1.5f), Vec3(1.9f, -1.5f, -0.5f), Vec3(1.5f, -0.7f, -1.0f)};
+  triangle.indices = {0, 1, 2};
+  triangle.material = both_faces;
+  test::add_mesh(desc, std::move(triangle));
+  const Scene scene(std::move(desc), &material_alpha);
+  ASSERT_GT(scene.emitters().size(), 1u);
+  EXPECT_GT(expect_lane_direct_light_matches_direct_light(scene), 2000u);
+}
+
+// The lanes' shadow rays are spawn_ray_between's, bit for bit, wherever the points are: at and near
+// zero (where the offset steps from -0 and crosses signs), far from the origin, with normals along
+// an axis (offsets of zero) and in general directions, lit from either side; with AVX2 and without.
+TEST(LaneDirectLight, ShadowRaysAreSpawnRayBetweens) {
+  Pcg32 rng(43, 44);
+  const float magnitudes[] = {0.0f, 1e-30f, 1e-3f, 1.0f, 3e4f};
+  const auto coordinate = [&] {
+    const float m = magnitudes[rng.next_u32() % 5];
+    return (rng.next_float() < 0.5f ? -m : m) * (rng.next_float() < 0.2f ? 1.0f : rng.next_float());
+  };
+  const auto point = [&] { return Vec3(coordinate(), coordinate(), coordinate()); };
+  const auto direction = [&] {
+    if (rng.next_float() < 0.5f) {
+      Vec3 axis(0.0f);
+      axis[int(rng.next_u32() % 3)] = rng.next_float() < 0.5f ? -1.0f : 1.0f;
+      return axis;
+    }
+    return sample_uniform_sphere({rng.next_float(), rng.next_float()});
+  };
+  int compared = 0;
+  for (int round = 0; round < 2000; ++round) {
+    const int n = 1 + round % LaneLightBatch::kLanes;
+    LaneLightBatch batch;
+    Emitters::Emitter light[LaneLightBatch::kLanes];
+    Emitters::AreaDraw draw[LaneLightBatch::kLanes];
+    SurfaceHit from[LaneLightBatch::kLanes];
+    for (int k = 0; k < n; ++k) {
+      from[k].p = point();
+      from[k].p_error = abs(point()) * 1e-6f;
+      from[k].ng = direction();
+      from[k].triangle = {1, 2, uint32_t(k)};
+      Emitters::Emitter& e = light[k];
+      e.p0 = point();
+      e.p1 = e.p0 + Vec3(rng.next_float(), 0, 0);
+      e.p2 = e.p0 + Vec3(0, 0, rng.next_float());
+      e.normal = Vec3(0, rng.next_float() < 0.5f ? -1.0f : 1.0f, 0);
+      e.quad_slack = rng.next_float() < 0.5f ? 0.0f : 1e-7f;
+      e.area = 1;
+      const float u = rng.next_float(), v = rng.next_float() * (1 - u);
+      draw[k] = {&e, 0, {1.0f - u - v, u, v}, 1.0f};
+      // A lobe that sees the light: its normal toward the light's first corner, wo along it.
+      const Vec3 to = e.p0 - from[k].p;
+      Bsdf::LambertianLobe lobe;
+      lobe.n = lobe.ng = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
+      lobe.wo_dot_ng = lobe.wo_z = 1;
+      lobe.f = Rgb(1.0f);
+      batch.add(from[k].p, from[k].p_error, from[k].ng, from[k].triangle, lobe, Rgb(1.0f), draw[k], Rgb(1.0f), true);
+    }
+    LaneLightResult out[LaneLightBatch::kLanes], sse[LaneLightBatch::kLanes];
+    lane_direct_light(batch, out);
+    lane_direct_light(batch, sse, false);
+    for (int k = 0; k < n; ++k) {
+      // Without AVX2 (SSE pairs), the same bits.
+      ASSERT_EQ(out[k].cast, sse[k].cast);
+      if (!out[k].cast) continue;
+      EXPECT_EQ(out[k].contribution, sse[k].contribution);
+      EXPECT_EQ(out[k].ray.origin, sse[k].ray.origin);
+      EXPECT_EQ(out[k].ray.dir, sse[k].ray.dir);
+      const Emitters::AreaDraw& l = draw[k];
+      // Emitters::triangle_point's point and error bound.
+      const Vec3 p = l.c0() * l.b.b0 + l.c1() * l.b.b1 + l.c2() * l.b.b2;
+      const Vec3 p_error = (abs(l.c0() * l.b.b0) + abs(l.c1() * l.b.b1) + abs(l.c2() * l.b.b2)) * kHitRelativeError +
+                           Vec3(l.light->quad_slack);
+      const Ray expected = spawn_ray_between(from[k], p, p_error, l.light->normal);
+      const Ray& got = out[k].ray;
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(got.origin[a]), std::bit_cast<uint32_t>(expected.origin[a]))
+            << "round " << round << " lane " << k << " axis " << a << ": " << got.origin[a] << " for " << expected.origin[a];
+        ASSERT_EQ(std::bit_cast<uint32_t>(got.dir[a]), std::bit_cast<uint32_t>(expected.dir[a]))
+            << "round " << round << " lane " << k << " axis " << a;
+      }
+      EXPECT_EQ(got.t_max, expected.t_max);
+      EXPECT_EQ(got.leaves.primitive, expected.leaves.primitive);
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 5000);
+}
+
+// The same where a light tree chooses the lights, ahead of shading (Emitters::pick_many).
+TEST(LaneDirectLight, GivesDirectLightsBitsUnderALightTree) {
+  SceneDesc desc = packet_test_scene();
+  int lamp[3];
+  for (int k = 0; k < 3; ++k) lamp[k] = test::add_material(desc, Rgb(0.0f), Rgb(2.0f + float(k), 3.0f, 4.0f - float(k)));
+  for (int k = 0; k < 60; ++k) {
+    const float x = -1.8f + 0.06f * float(k);
+    test::add_quad(desc, Vec3(x, 1.99f, -1.8f + 0.05f * float(k % 7)), Vec3(0.04f, 0, 0), Vec3(0, 0, 0.3f), lamp[k % 3]);
+  }
+  const Scene scene(std::move(desc), &material_alpha);
+  ASSERT_EQ(scene.emitters().light_sampling(), LightSampling::Tree);
+  EXPECT_GT(expect_lane_direct_light_matches_direct_light(scene), 2000u);
 }
 
 // The same under a light tree larger than the caches, where the lanes choose their lights together

@@ -1,80 +1,15 @@
 #include "integrators/lane_direct_light.h"
 
 #include <algorithm>
-#include <cstring>
 #include <iterator>
-#include <limits>
 
 #include "core/constants.h"
-#include "core/cpu_features.h"
-#include "core/float8.h"
-#include "core/spawn.h"
+#include "integrators/lane_math.h"
 
 namespace prism {
 namespace {
 
-// Every operation below is the one its scalar form makes (core/emitters.cpp, core/spawn.h,
-// materials/bsdf.cpp, core/sampling.h), in the same order: IEEE adds, multiplies, divides and square
-// roots, no fused multiply-adds, no reassociation. So lane k holds the bits the scalar code computes
-// for request k.
-using F8 = Float8Lanes;
-using M8 = Mask8Lanes;
-constexpr int kLanes = 8;  // a row's lanes taken at once
-
-struct V8 {
-  F8 x, y, z;
-};
-
-[[gnu::always_inline]] inline F8 splat(float v) { return F8{} + v; }
-[[gnu::always_inline]] inline V8 add(const V8& a, const V8& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-[[gnu::always_inline]] inline V8 sub(const V8& a, const V8& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-[[gnu::always_inline]] inline V8 mul(const V8& a, F8 s) { return {a.x * s, a.y * s, a.z * s}; }
-[[gnu::always_inline]] inline V8 mul(const V8& a, const V8& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-[[gnu::always_inline]] inline F8 dot(const V8& a, const V8& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-[[gnu::always_inline]] inline F8 absolute(F8 a) { return vabs(Float8(a)).v; }
-[[gnu::always_inline]] inline V8 absolute(const V8& a) { return {absolute(a.x), absolute(a.y), absolute(a.z)}; }
-[[gnu::always_inline]] inline F8 root(F8 a) { return vsqrt(Float8(a)).v; }
-[[gnu::always_inline]] inline F8 pick(M8 m, F8 a, F8 b) { return select(Mask8{m}, Float8(a), Float8(b)).v; }
-[[gnu::always_inline]] inline V8 pick(M8 m, const V8& a, const V8& b) {
-  return {pick(m, a.x, b.x), pick(m, a.y, b.y), pick(m, a.z, b.z)};
-}
-[[gnu::always_inline]] inline M8 any_nonzero(const V8& a) { return (a.x != 0) | (a.y != 0) | (a.z != 0); }
-
-// next_float_up (core/spawn.h) lane by lane: NaN and +inf stay, -0 steps as +0 does, and the bit
-// pattern steps away from zero for positive values, toward it for negative ones.
-[[gnu::always_inline]] inline F8 float_up(F8 v) {
-  const M8 keep = (v != v) | (v == splat(std::numeric_limits<float>::infinity()));
-  const F8 from = pick(v == 0, splat(0.0f), v);
-  const M8 step = ((from >= 0) & 2) - 1;  // +1 or -1
-  return pick(keep, v, reinterpret_cast<F8>(reinterpret_cast<M8>(from) + step));
-}
-// next_float_down(v) = -next_float_up(-v).
-[[gnu::always_inline]] inline F8 float_down(F8 v) { return -float_up(-v); }
-
-// One coordinate c of an offset origin rounded away from the surface, the way its offset o points.
-[[gnu::always_inline]] inline F8 step_away(F8 o, F8 c) {
-  return pick(o > 0, float_up(c), pick(o < 0, float_down(c), c));
-}
-
-// offset_ray_origin (core/spawn.h).
-[[gnu::always_inline]] inline V8 offset_ray_origin(const V8& p, const V8& err, const V8& n, const V8& w) {
-  const F8 d = dot(absolute(n), err);
-  V8 offset = mul(n, d);
-  const M8 flip = dot(w, n) < 0;
-  offset = pick(flip, V8{-offset.x, -offset.y, -offset.z}, offset);
-  const V8 po = add(p, offset);
-  return {step_away(offset.x, po.x), step_away(offset.y, po.y), step_away(offset.z, po.z)};
-}
-
-// Lanes first to first + 7 of row r.
-[[gnu::always_inline]] inline F8 row(const LaneLightBatch& b, int r, int first) {
-  F8 v;
-  std::memcpy(&v, b.row(r) + first, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline V8 rows(const LaneLightBatch& b, int r, int first) {
-  return {row(b, r, first), row(b, r + 1, first), row(b, r + 2, first)};
-}
+using namespace lanes;
 
 // Lanes first to first + 7 of the batch: the light sample, the lobe, the shadow ray and the
 // contribution.
@@ -109,10 +44,7 @@ struct V8 {
   const V8 incident = pick(emits, l.emission, V8{});
   // Bsdf::evaluate for the Lambertian lobe alone: consistent(), then f |cos| and the cosine density.
   const F8 z = dot(wi, l.bsdf_n);
-  const F8 geometric = dot(wi, l.bsdf_ng) * l.wo_dot_ng;
-  const F8 shading = z * l.wo_z;
-  const M8 consistent = (geometric != 0) & (shading != 0) & ((geometric > 0) == (shading > 0));
-  const M8 above = consistent & (z > 0) & (l.wo_z > 0);
+  const M8 above = consistent(wi, z, l.bsdf_ng, l.wo_dot_ng, l.wo_z) & (z > 0) & (l.wo_z > 0);
   const V8 f_cos = pick(above, mul(l.f, absolute(z)), V8{});
   const F8 bsdf_pdf = pick(above, z * splat(kInvPi), splat(0.0f));
   const M8 cast = (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
@@ -142,51 +74,39 @@ struct V8 {
   }
 }
 
-__attribute__((target("avx2"), flatten)) void all_lanes_avx2(const LaneLightBatch& batch, LaneLightResult* out) {
-  for (int first = 0; first < batch.size(); first += kLanes) eight_lanes(batch, first, out);
-}
-
-[[gnu::flatten]] void all_lanes_sse(const LaneLightBatch& batch, LaneLightResult* out) {
-  for (int first = 0; first < batch.size(); first += kLanes) eight_lanes(batch, first, out);
-}
-
 }  // namespace
 
 int LaneLightBatch::add(const Vec3& p, const Vec3& p_error, const Vec3& ng, TriangleId leaves,
                         const Bsdf::LambertianLobe& lobe, const Rgb& beta, const Emitters::AreaDraw& light,
                         const Rgb& emission, bool double_sided) {
-  const int lane = size_++;
+  const int lane = next_lane();
   set(kP, lane, p);
   set(kPError, lane, p_error);
   set(kNg, lane, ng);
   leaves_[lane] = leaves;
-  set(kBsdfN, lane, lobe.n);
+  set(kBsdfN, lane, lobe.frame.n);
   set(kBsdfNg, lane, lobe.ng);
-  rows_[kWoDotNg][lane] = lobe.wo_dot_ng;
-  rows_[kWoZ][lane] = lobe.wo_z;
+  set(kWoDotNg, lane, lobe.wo_dot_ng);
+  set(kWoZ, lane, lobe.wo_z);
   set(kF, lane, lobe.f);
   set(kBeta, lane, beta);
   set(kC0, lane, light.c0());
   set(kC1, lane, light.c1());
   set(kC2, lane, light.c2());
-  rows_[kB0][lane] = light.b.b0;
-  rows_[kB1][lane] = light.b.b1;
-  rows_[kB2][lane] = light.b.b2;
+  set(kB0, lane, light.b.b0);
+  set(kB1, lane, light.b.b1);
+  set(kB2, lane, light.b.b2);
   set(kLightN, lane, light.light->normal);
-  rows_[kSlack][lane] = light.light->quad_slack;
-  rows_[kPdfArea][lane] = 1.0f / light.light->area;
-  rows_[kPmf][lane] = light.pmf;
+  set(kSlack, lane, light.light->quad_slack);
+  set(kPdfArea, lane, 1.0f / light.light->area);
+  set(kPmf, lane, light.pmf);
   set(kEmission, lane, emission);
-  rows_[kDoubleSided][lane] = double_sided ? 1.0f : 0.0f;
+  set(kDoubleSided, lane, double_sided ? 1.0f : 0.0f);
   return lane;
 }
 
 void lane_direct_light(const LaneLightBatch& batch, LaneLightResult* out, bool avx2) {
-  if (batch.size() == 0) return;
-  if (avx2 && cpu_has_avx2())
-    all_lanes_avx2(batch, out);
-  else
-    all_lanes_sse(batch, out);
+  run_lanes<eight_lanes>(batch, out, avx2);
 }
 
 }  // namespace prism

@@ -175,8 +175,8 @@ bool PathIntegrator::scatters_next(const Path& path) const {
 // start depth): a dimension then means the same decision in every sample of a pixel, and stays
 // stratified across them (pbrt-v4 does the same). li_packet draws them (at.draws) before the lanes
 // shade.
-bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
-                             RayCounters& counters, LaneLightBatch* lanes) const {
+PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
+                                             RayCounters& counters, Lanes* lanes) const {
   const SurfaceHit* found = at.hit;
   const Vec2* sky_uv = at.sky_uv;
   const SceneDesc& desc = scene.desc();
@@ -201,7 +201,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
                                : power_heuristic(path.prev_bsdf_pdf, emitters.environment_pdf(path.prev_p, w, seen.pdf));
       path.light_after(depth) += beta * seen.radiance * beer_lambert(path.media.sigma_a(), kInfinity) * weight;
     }
-    return false;
+    return Step::kEnds;
   }
   const SurfaceHit& hit = *found;
   const bool first_hit = path.vertices == 0;
@@ -234,15 +234,15 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
   if (!scatters_next(path)) {
     // No more scattering, but a straight crossing is none: next-event estimation at the last
     // vertex counted light beyond sheets, so the path must still reach it for its MIS half.
-    if (!material.is_thin_sheet() || path.crossings >= kMaxSheetCrossings) return false;
+    if (!material.is_thin_sheet() || path.crossings >= kMaxSheetCrossings) return Step::kEnds;
     const Rgb through =
         make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front)).straight_through();
-    if (is_black(through)) return false;
+    if (is_black(through)) return Step::kEnds;
     beta *= through;
     ++path.crossings;
     leave_surface(path, hit, -wo);
     ++counters.extension;
-    return true;
+    return Step::kGoesOn;
   }
 
   const VertexSamples& u = *at.draws;
@@ -253,7 +253,7 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    if (!(lanes && queue_direct_light(scene, hit, bsdf, bounce, path, material, u, at, shadow, *lanes))) {
+    if (!(lanes && queue_direct_light(scene, hit, bsdf, bounce, path, material, u, at, shadow, lanes->lights))) {
       shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
       if (shadow.cast) {
         ++counters.shadow;
@@ -263,6 +263,12 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
     shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
+  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes; land_bounce finishes it.
+  if (lanes && !(bounce.share > 0))
+    if (const std::optional<Bsdf::LambertianLobe> lobe = bsdf.lambertian_lobe()) {
+      lanes->bounces.add(hit, *lobe, u.direction);
+      return Step::kInLanes;
+    }
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
   std::optional<BsdfSample> bs;
   int cone = -1;  // the caster's cone an aimed direction was drawn in
@@ -277,40 +283,53 @@ bool PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, 
         bounce.share > 0 ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f) : u.lobe;
     bs = bsdf.sample(u_lobe, u.direction);
   }
-  if (!bs) return false;
+  if (!bs) return Step::kEnds;
   if (bounce.share > 0) {
     // A delta lobe's direction is one the casters' cones draw with probability 0.
     bs->pdf = bs->delta ? (1 - bounce.share) * bs->pdf : bounce.pdf(bs->pdf, bs->wi, cone);
-    if (is_black(bs->f_cos) || !(bs->pdf > 0)) return false;
+    if (is_black(bs->f_cos) || !(bs->pdf > 0)) return Step::kEnds;
   }
-  beta *= bs->f_cos / bs->pdf;
-  if (bs->delta && bs->transmission && material.is_thin_sheet()) {
+  return scatter(path, hit, *bs, material, from_front, u.roulette, counters) ? Step::kGoesOn : Step::kEnds;
+}
+
+bool PathIntegrator::scatter(Path& path, const SurfaceHit& hit, const BsdfSample& bs, const MaterialDesc& material,
+                             bool from_front, float u_roulette, RayCounters& counters, const Vec3* origin) const {
+  const int depth = path.depth;
+  path.beta *= bs.f_cos / bs.pdf;
+  if (bs.delta && bs.transmission && material.is_thin_sheet()) {
     // Straight through a smooth sheet, as a shadow ray would go: not a scattering event.
     if (path.crossings >= kMaxSheetCrossings) return false;
     ++path.crossings;
   } else {
     path.crossings = 0;
-    path.prev_bsdf_pdf = bs->pdf;
-    path.prev_delta = bs->delta;
+    path.prev_bsdf_pdf = bs.pdf;
+    path.prev_delta = bs.delta;
     // Past the diffuse limit the sampled ray still finds the emitter it hits (its MIS half of
     // direct lighting), then the path ends.
-    if (!bs->delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
+    if (!bs.delta && max_diffuse_depth_ >= 0 && ++path.diffuse_depth > max_diffuse_depth_) path.last_vertex = true;
     path.prev_p = hit.p;
     path.prev_n = pick_normal(hit);
-    if (bs->transmission) {
+    if (bs.transmission) {
       path.media.cross(material, hit.material, from_front);
-      if (material.has_volume()) path.eta_scale *= bs->eta * bs->eta;
+      if (material.has_volume()) path.eta_scale *= bs.eta * bs.eta;
     }
     path.depth = depth + 1;
   }
-  leave_surface(path, hit, bs->wi);
-  if (!survives_roulette(path, depth + 1, u.roulette)) return false;
+  leave_surface(path, hit, bs.wi, origin);
+  if (!survives_roulette(path, depth + 1, u_roulette)) return false;
   ++counters.extension;
   return true;
 }
 
-void PathIntegrator::leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi) {
-  path.ray = spawn_ray_cone(hit, wi, path.ray);
+void PathIntegrator::leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi, const Vec3* origin) {
+  if (origin) {
+    Ray r{*origin, wi, 0.0f, std::numeric_limits<float>::infinity(), hit.triangle};  // as spawn_ray_cone
+    r.cone_width = hit.cone_width;
+    r.cone_spread = path.ray.cone_spread;
+    path.ray = r;
+  } else {
+    path.ray = spawn_ray_cone(hit, wi, path.ray);
+  }
   path.segment_start = hit.p;
   ++path.vertices;
 }
@@ -381,10 +400,12 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   float shadow_iors[kLanes];
   Rgb through[kLanes];
   int shadow_lane[kLanes];
-  static_assert(LaneLightBatch::kLanes >= kLanes);
-  LaneLightBatch lane_lights;
-  LaneLightResult lane_results[kLanes];
-  int request_lane[kLanes];
+  static_assert(LaneLightBatch::kLanes >= kLanes && LaneBounceBatch::kLanes >= kLanes);
+  Lanes lanes;
+  LaneLightResult light_results[kLanes];
+  LaneBounce bounce_results[kLanes];
+  int light_lane[kLanes], bounce_lane[kLanes];
+  Step step[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
   const std::optional<Emitters::Pick>* light[kLanes] = {};
   // Each round's per-lane values, set for the round's live lanes before they are read.
@@ -449,10 +470,9 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       for (int j = 0; j < picks; ++j) light[pick_lane[j]] = &picked[j];
     }
 
-    int still = 0;
-    lane_lights.clear();
+    lanes.lights.clear();
+    lanes.bounces.clear();
     for (int i = 0; i < m; ++i) {
-      const int k = live[i];
       Arrival at;
       if (found[i]) {
         at.hit = &hits[i];
@@ -462,23 +482,41 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       } else if (sky.has_map()) {
         at.sky_uv = &sky_uv[i];
       }
-      const bool goes_on =
-          advance(scene, paths[k], at, shadows[i], counters, lane_direct_light_ ? &lane_lights : nullptr);
-      if (shadows[i].queued) request_lane[lane_lights.size() - 1] = i;
-      if (goes_on) live[still++] = k;
+      step[i] = advance(scene, paths[live[i]], at, shadows[i], counters, lanes_ ? &lanes : nullptr);
+      if (shadows[i].queued) light_lane[lanes.lights.size() - 1] = i;
+      if (step[i] == Step::kInLanes) bounce_lane[lanes.bounces.size() - 1] = i;
     }
-    // The Lambertian vertices' light samples, in SIMD lanes.
-    if (lane_lights.size() > 0) {
-      lane_direct_light(lane_lights, lane_results);
-      for (int j = 0; j < lane_lights.size(); ++j) {
-        ShadowQuery& q = shadows[request_lane[j]];
-        q.cast = lane_results[j].cast;
+    // The Lambertian vertices' light samples and bounces, in SIMD lanes.
+    if (lanes.lights.size() > 0) {
+      lane_direct_light(lanes.lights, light_results);
+      for (int j = 0; j < lanes.lights.size(); ++j) {
+        ShadowQuery& q = shadows[light_lane[j]];
+        q.cast = light_results[j].cast;
         if (!q.cast) continue;
-        q.ray = lane_results[j].ray;
-        q.contribution = lane_results[j].contribution;
+        q.ray = light_results[j].ray;
+        q.contribution = light_results[j].contribution;
         ++counters.shadow;
       }
     }
+    if (lanes.bounces.size() > 0) {
+      lane_bounce(lanes.bounces, bounce_results);
+      for (int j = 0; j < lanes.bounces.size(); ++j) {
+        const int i = bounce_lane[j];
+        const LaneBounce& b = bounce_results[j];
+        BsdfSample bs;
+        bs.wi = b.wi;
+        bs.f_cos = b.f_cos;
+        bs.pdf = b.pdf;
+        // A Lambertian bounce reflects: the material and side matter only to transmission.
+        step[i] = b.sampled && scatter(paths[live[i]], hits[i], bs, scene.desc().material(hits[i].material), true,
+                                       draws[i].roulette, counters, &b.origin)
+                      ? Step::kGoesOn
+                      : Step::kEnds;
+      }
+    }
+    int still = 0;
+    for (int i = 0; i < m; ++i)
+      if (step[i] == Step::kGoesOn) live[still++] = live[i];
     int s = 0;
     for (int i = 0; i < m; ++i)
       if (shadows[i].cast) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/integrator.h"
+#include "integrators/lane_bounce.h"
 #include "integrators/lane_direct_light.h"
 #include "integrators/medium_stack.h"
 #include "materials/bsdf.h"
@@ -31,10 +32,11 @@ class PathIntegrator final : public Integrator {
   // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
-  // Whether li_packet estimates direct light at Lambertian vertices lit by area-sampled triangles
-  // and quads in SIMD lanes (lane_direct_light), on by default. Either way the images are the same
-  // bits; off serves tests and measurements.
-  void set_lane_direct_light(bool on) { lane_direct_light_ = on; }
+  // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes: next-event
+  // estimation toward area-sampled triangles and quads (lane_direct_light) and the bounce
+  // (lane_bounce). On by default; either way the images are the same bits, so off serves tests
+  // and measurements.
+  void set_lanes(bool on) { lanes_ = on; }
 
  private:
   struct Path;
@@ -47,10 +49,23 @@ class PathIntegrator final : public Integrator {
   // One bounce of a path where its ray arrived (a surface or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
   // the path ends here.
+  // What advance leaves a path to: it ends, it goes on, or it goes on once lane_bounce has drawn
+  // its bounce (land_bounce).
+  enum class Step { kEnds, kGoesOn, kInLanes };
+  // The work advance may hand to SIMD kernels instead of doing it lane by lane.
+  struct Lanes {
+    LaneLightBatch lights;
+    LaneBounceBatch bounces;
+  };
   // lanes: where next-event estimation may go to lane_direct_light instead of direct_light
-  // (ShadowQuery::queued).
-  bool advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
-               LaneLightBatch* lanes = nullptr) const;
+  // (ShadowQuery::queued), and a Lambertian bounce to lane_bounce (Step::kInLanes); null: neither.
+  Step advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
+               Lanes* lanes = nullptr) const;
+  // The rest of a bounce once its direction is drawn (bs): the throughput, the path's record of the
+  // vertex, the next ray (from `origin` where lane_bounce offset it already) and Russian roulette.
+  // False when the path ends.
+  bool scatter(Path& path, const SurfaceHit& hit, const BsdfSample& bs, const MaterialDesc& material, bool from_front,
+               float u_roulette, RayCounters& counters, const Vec3* origin = nullptr) const;
   // Next-event estimation by lane_direct_light where the vertex and its light draw allow it: adds
   // a lane to `lanes` (true, shadow.queued) or finds there is no light to sample (true); false:
   // direct_light's case.
@@ -70,7 +85,8 @@ class PathIntegrator final : public Integrator {
   void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;
   RadianceSample finish(Path& path) const;
   // Sends the path on from `hit` along wi, after a bounce or a straight crossing of a thin sheet.
-  static void leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi);
+  // origin: the ray's, where the caller offset it already.
+  static void leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi, const Vec3* origin = nullptr);
   // Russian roulette after the path's bounce number `depth` (none before rr_start_depth), with draw u;
   // false when the path ends, else the survivor's throughput is reweighted.
   bool survives_roulette(Path& path, int depth, float u) const;
@@ -80,7 +96,7 @@ class PathIntegrator final : public Integrator {
   int max_diffuse_depth_;
   float clamp_indirect_;
   float caster_share_;
-  bool lane_direct_light_ = true;
+  bool lanes_ = true;
 };
 
 }  // namespace prism

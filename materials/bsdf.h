@@ -49,13 +49,14 @@ class Bsdf {
   // The Lambertian lobe alone, as evaluate() weighs it, for next-event estimation in SIMD lanes
   // (integrators/lane_direct_light.h): null for any other mixture, or a BSDF that is black.
   struct LambertianLobe {
-    Vec3 n, ng;  // the normal cosines are taken about; the geometric one, mirrored to wo's side
+    Frame frame;  // about the normal cosines are taken about
+    Vec3 ng;      // the geometric normal, mirrored to wo's side
     float wo_dot_ng = 0, wo_z = 0;
-    Rgb f;       // albedo / pi
+    Rgb f;        // albedo / pi
   };
   std::optional<LambertianLobe> lambertian_lobe() const {
     if (!lambertian_ || !valid_) return std::nullopt;
-    return LambertianLobe{frame_.n, ng_, wo_dot_ng_, wo_.z, diffuse_.f()};
+    return LambertianLobe{frame_, ng_, wo_dot_ng_, wo_.z, diffuse_.f()};
   }
   // True when no lobe transmits: every direction it scatters to stays on wo's side.
   bool reflects_only() const { return weight_[kDielectric] == 0; }

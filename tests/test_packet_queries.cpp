@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <optional>
 #include <vector>
 
 #include "core/pcg32.h"
@@ -147,11 +148,12 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
   EXPECT_GT(packed_counters.extension, 1000u);
 }
 
-// The same paths with next-event estimation in SIMD lanes (lane_direct_light) and without: the
-// same bits, lane by lane, and the same rays counted. Returns how many shadow rays were cast.
-uint64_t expect_lane_direct_light_matches_direct_light(const Scene& scene, int rounds = 200) {
+// The same paths with part of their vertices' work in SIMD lanes (lane_direct_light, lane_bounce)
+// and without: the same bits, lane by lane, and the same rays counted. Returns how many shadow rays
+// were cast.
+uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200) {
   PathIntegrator lanes(8, 3), alone(8, 3);
-  alone.set_lane_direct_light(false);
+  alone.set_lanes(false);
   Pcg32 rng(41, 42);
   RayCounters lane_counters, alone_counters;
   constexpr int kMaxPaths = Integrator::kPathsInLockstep + 3;
@@ -206,11 +208,11 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   expect_paths_in_lockstep_match_paths_alone(scene);
 }
 
-// Next-event estimation in SIMD lanes gives direct_light's bits: Lambertian walls and blocks lit by
+// The lanes give the scalar code's bits: Lambertian walls and blocks lit by
 // a quad seen from far and near (where it is sampled by solid angle instead), from behind (nothing
 // to sample), by a double-sided triangle, by a textured quad (not the lanes' case), through glass
 // with absorption (not theirs either) and beside alpha-blended sheets.
-TEST(LaneDirectLight, GivesDirectLightsBitsLaneByLane) {
+TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   SceneDesc desc = lockstep_test_scene();
   const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(8.0f, 6.0f, 4.0f));
   test::add_quad(desc, Vec3(-0.5f, 1.99f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), lamp);  // facing down
@@ -222,13 +224,13 @@ TEST(LaneDirectLight, GivesDirectLightsBitsLaneByLane) {
   test::add_mesh(desc, std::move(triangle));
   const Scene scene(std::move(desc), &material_alpha);
   ASSERT_GT(scene.emitters().size(), 1u);
-  EXPECT_GT(expect_lane_direct_light_matches_direct_light(scene), 2000u);
+  EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
 }
 
 // The lanes' shadow rays are spawn_ray_between's, bit for bit, wherever the points are: at and near
 // zero (where the offset steps from -0 and crosses signs), far from the origin, with normals along
 // an axis (offsets of zero) and in general directions, lit from either side; with AVX2 and without.
-TEST(LaneDirectLight, ShadowRaysAreSpawnRayBetweens) {
+TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
   Pcg32 rng(43, 44);
   const float magnitudes[] = {0.0f, 1e-30f, 1e-3f, 1.0f, 3e4f};
   const auto coordinate = [&] {
@@ -268,7 +270,8 @@ TEST(LaneDirectLight, ShadowRaysAreSpawnRayBetweens) {
       // A lobe that sees the light: its normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
       Bsdf::LambertianLobe lobe;
-      lobe.n = lobe.ng = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
+      lobe.ng = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
+      lobe.frame = Frame::from_normal(lobe.ng);
       lobe.wo_dot_ng = lobe.wo_z = 1;
       lobe.f = Rgb(1.0f);
       batch.add(from[k].p, from[k].p_error, from[k].ng, from[k].triangle, lobe, Rgb(1.0f), draw[k], Rgb(1.0f), true);
@@ -304,8 +307,73 @@ TEST(LaneDirectLight, ShadowRaysAreSpawnRayBetweens) {
   EXPECT_GT(compared, 5000);
 }
 
+// The lanes' bounces are Bsdf::sample's for a Lambertian lobe and their rays' origins spawn_ray's,
+// bit for bit, with AVX2 and without: shading normals leaning off the face (the lobe's frame is
+// not the face's), seen from either side, with draws on the square's edges and at its centre.
+TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
+  Pcg32 rng(45, 46);
+  const float edges[] = {0.0f, 0.5f, 0x1.fffffep-1f};
+  int compared = 0, refused = 0;
+  for (int round = 0; round < 3000; ++round) {
+    const int n = 1 + round % LaneBounceBatch::kLanes;
+    LaneBounceBatch batch;
+    SurfaceHit hits[LaneBounceBatch::kLanes];
+    std::optional<Bsdf> bsdfs[LaneBounceBatch::kLanes];
+    Vec2 draws[LaneBounceBatch::kLanes];
+    for (int k = 0; k < n; ++k) {
+      SurfaceHit& hit = hits[k];
+      hit.p = Vec3(rng.next_float() - 0.5f, 100.0f * rng.next_float(), -3.0f) * (rng.next_float() < 0.5f ? 1e-3f : 1e3f);
+      hit.p_error = abs(hit.p) * 1e-6f;
+      hit.ng = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      hit.ns = normalize(hit.ng + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * 0.6f);
+      const Vec3 wo = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      SurfaceParams params;
+      params.base_color = Rgb(rng.next_float(), rng.next_float(), rng.next_float());
+      params.specular = 0;
+      bsdfs[k].emplace(params, hit.ns, hit.ng, wo, 1.0f);
+      draws[k] = rng.next_float() < 0.2f ? Vec2{edges[rng.next_u32() % 3], edges[rng.next_u32() % 3]}
+                                         : Vec2{rng.next_float(), rng.next_float()};
+      const std::optional<Bsdf::LambertianLobe> lobe = bsdfs[k]->lambertian_lobe();
+      if (!lobe) {  // wo on the surface's plane, or under the bent normal: only lobes go to the lanes
+        bsdfs[k].reset();
+        continue;
+      }
+      batch.add(hit, *lobe, draws[k]);
+    }
+    LaneBounce out[LaneBounceBatch::kLanes], sse[LaneBounceBatch::kLanes];
+    lane_bounce(batch, out);
+    lane_bounce(batch, sse, false);
+    for (int k = 0, lane = 0; k < n; ++k) {
+      if (!bsdfs[k]) continue;
+      const LaneBounce& got = out[lane];
+      const LaneBounce& other = sse[lane++];
+      const std::optional<BsdfSample> expected = bsdfs[k]->sample(0.5f, draws[k]);
+      ASSERT_EQ(got.sampled, expected.has_value()) << "round " << round << " lane " << k;
+      ASSERT_EQ(other.sampled, got.sampled);
+      if (!expected) {
+        ++refused;
+        continue;
+      }
+      const Vec3 origin = spawn_ray(hits[k], expected->wi).origin;
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(got.wi[a]), std::bit_cast<uint32_t>(expected->wi[a])) << "round " << round;
+        ASSERT_EQ(std::bit_cast<uint32_t>(got.f_cos[a]), std::bit_cast<uint32_t>(expected->f_cos[a]));
+        ASSERT_EQ(std::bit_cast<uint32_t>(got.origin[a]), std::bit_cast<uint32_t>(origin[a]));
+      }
+      ASSERT_EQ(got.pdf, expected->pdf);
+      EXPECT_EQ(other.wi, got.wi);
+      EXPECT_EQ(other.origin, got.origin);
+      EXPECT_EQ(other.f_cos, got.f_cos);
+      EXPECT_EQ(other.pdf, got.pdf);
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 20000);
+  EXPECT_GT(refused, 0);  // draws the checks turn down were among them
+}
+
 // The same where a light tree chooses the lights, ahead of shading (Emitters::pick_many).
-TEST(LaneDirectLight, GivesDirectLightsBitsUnderALightTree) {
+TEST(Lanes, GiveTheScalarPathsBitsUnderALightTree) {
   SceneDesc desc = packet_test_scene();
   int lamp[3];
   for (int k = 0; k < 3; ++k) lamp[k] = test::add_material(desc, Rgb(0.0f), Rgb(2.0f + float(k), 3.0f, 4.0f - float(k)));
@@ -315,7 +383,7 @@ TEST(LaneDirectLight, GivesDirectLightsBitsUnderALightTree) {
   }
   const Scene scene(std::move(desc), &material_alpha);
   ASSERT_EQ(scene.emitters().light_sampling(), LightSampling::Tree);
-  EXPECT_GT(expect_lane_direct_light_matches_direct_light(scene), 2000u);
+  EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
 }
 
 // The same under a light tree larger than the caches, where the lanes choose their lights together

@@ -1,0 +1,90 @@
+#include "integrators/lane_bounce.h"
+
+#include <algorithm>
+#include <iterator>
+
+#include "core/constants.h"
+#include "integrators/lane_math.h"
+
+namespace prism {
+namespace {
+
+using namespace lanes;
+
+// sin_cos_quarter (core/sampling.h), the same polynomials.
+[[gnu::always_inline]] inline void sin_cos_quarter(F8 a, F8& s, F8& c) {
+  const F8 a2 = a * a;
+  s = a * (splat(1.0f) +
+           a2 * (splat(-1.0f / 6) + a2 * (splat(1.0f / 120) + a2 * (splat(-1.0f / 5040) + a2 * splat(1.0f / 362880)))));
+  c = splat(1.0f) +
+      a2 * (splat(-0.5f) +
+            a2 * (splat(1.0f / 24) +
+                  a2 * (splat(-1.0f / 720) + a2 * (splat(1.0f / 40320) + a2 * splat(-1.0f / 3628800)))));
+}
+
+// Lanes first to first + 7: the cosine-weighted direction (sample_cosine_hemisphere, through the
+// concentric map), its value and density, Bsdf::sample's checks, and the next ray's origin.
+[[gnu::always_inline]] inline void eight_lanes(const LaneBounceBatch& batch, int first, LaneBounce* out) {
+  using B = LaneBounceBatch;
+  const int f = first;
+  const V8 s = rows(batch, B::kS, f), t = rows(batch, B::kT, f), n = rows(batch, B::kN, f);
+  const V8 bsdf_ng = rows(batch, B::kBsdfNg, f), p = rows(batch, B::kP, f), p_error = rows(batch, B::kPError, f);
+  const V8 ng = rows(batch, B::kNg, f), albedo_f = rows(batch, B::kF, f);
+  const F8 wo_dot_ng = row(batch, B::kWoDotNg, f), wo_z = row(batch, B::kWoZ, f);
+  const F8 ux = row(batch, B::kUx, f), uy = row(batch, B::kUy, f);
+  // sample_uniform_disk_concentric: the wedge pair u falls in, the angle's sine and cosine.
+  const F8 ox = splat(2.0f) * ux - splat(1.0f), oy = splat(2.0f) * uy - splat(1.0f);
+  const M8 centre = (ox == 0) & (oy == 0);
+  const M8 x_major = absolute(ox) > absolute(oy);
+  const F8 r = pick(x_major, ox, oy);
+  F8 sine, cosine;
+  sin_cos_quarter(splat(kPiOver4) * (pick(x_major, oy, ox) / r), sine, cosine);
+  const F8 dx = pick(centre, splat(0.0f), pick(x_major, r * cosine, r * sine));
+  const F8 dy = pick(centre, splat(0.0f), pick(x_major, r * sine, r * cosine));
+  const F8 below = splat(1.0f) - dx * dx - dy * dy;
+  const F8 z = root(pick(splat(0.0f) < below, below, splat(0.0f)));
+  // Frame::to_world, Lambertian's f |cos| and density, and Bsdf::consistent.
+  const V8 wi = add(add(mul(s, dx), mul(t, dy)), mul(n, z));
+  const F8 pdf = pick(z < 0, splat(0.0f), z) * splat(kInvPi);
+  const V8 f_cos = mul(albedo_f, absolute(z));
+  const M8 sampled = (pdf > 0) & consistent(wi, z, bsdf_ng, wo_dot_ng, wo_z) & any_nonzero(f_cos);
+  // spawn_ray's origin.
+  const V8 origin = offset_ray_origin(p, p_error, ng, wi);
+  const F8 fields[] = {wi.x, wi.y, wi.z, origin.x, origin.y, origin.z, f_cos.x, f_cos.y, f_cos.z, pdf};
+  alignas(32) float o[std::size(fields)][kLanes];
+  alignas(32) int32_t ok[kLanes];
+  for (size_t i = 0; i < std::size(fields); ++i) std::memcpy(o[i], &fields[i], sizeof(F8));
+  std::memcpy(ok, &sampled, sizeof(M8));
+  for (int k = 0; k < std::min(kLanes, batch.size() - first); ++k) {
+    LaneBounce& b = out[first + k];
+    b.sampled = ok[k] != 0;
+    if (!b.sampled) continue;
+    b.wi = {o[0][k], o[1][k], o[2][k]};
+    b.origin = {o[3][k], o[4][k], o[5][k]};
+    b.f_cos = {o[6][k], o[7][k], o[8][k]};
+    b.pdf = o[9][k];
+  }
+}
+
+}  // namespace
+
+int LaneBounceBatch::add(const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe, Vec2 u) {
+  const int lane = next_lane();
+  set(kS, lane, lobe.frame.s);
+  set(kT, lane, lobe.frame.t);
+  set(kN, lane, lobe.frame.n);
+  set(kBsdfNg, lane, lobe.ng);
+  set(kP, lane, hit.p);
+  set(kPError, lane, hit.p_error);
+  set(kNg, lane, hit.ng);
+  set(kF, lane, lobe.f);
+  set(kWoDotNg, lane, lobe.wo_dot_ng);
+  set(kWoZ, lane, lobe.wo_z);
+  set(kUx, lane, u.x);
+  set(kUy, lane, u.y);
+  return lane;
+}
+
+void lane_bounce(const LaneBounceBatch& batch, LaneBounce* out, bool avx2) { run_lanes<eight_lanes>(batch, out, avx2); }
+
+}  // namespace prism

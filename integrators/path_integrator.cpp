@@ -263,7 +263,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
-  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes; land_bounce finishes it.
+  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes (lane_bounce); li_packet
+  // then finishes it with scatter().
   if (lanes && !(bounce.share > 0))
     if (const std::optional<Bsdf::LambertianLobe> lobe = bsdf.lambertian_lobe()) {
       lanes->bounces.add(hit, *lobe, u.direction);

@@ -49,8 +49,8 @@ class PathIntegrator final : public Integrator {
   // One bounce of a path where its ray arrived (a surface or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
   // the path ends here.
-  // What advance leaves a path to: it ends, it goes on, or it goes on once lane_bounce has drawn
-  // its bounce (land_bounce).
+  // What advance leaves a path to: it ends, it goes on, or it waits for lane_bounce to draw its
+  // bounce (li_packet then finishes it with scatter).
   enum class Step { kEnds, kGoesOn, kInLanes };
   // The work advance may hand to SIMD kernels instead of doing it lane by lane.
   struct Lanes {

@@ -208,10 +208,10 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   expect_paths_in_lockstep_match_paths_alone(scene);
 }
 
-// The lanes give the scalar code's bits: Lambertian walls and blocks lit by
-// a quad seen from far and near (where it is sampled by solid angle instead), from behind (nothing
-// to sample), by a double-sided triangle, by a textured quad (not the lanes' case), through glass
-// with absorption (not theirs either) and beside alpha-blended sheets.
+// The lanes give the scalar code's bits: Lambertian walls and blocks lit by a quad seen from far
+// and near (where it is sampled by solid angle instead) and from behind (nothing to sample), and by
+// a double-sided triangle; paths through glass with absorption and past alpha-blended sheets and
+// spheres (not the lanes' case) in the same packets.
 TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   SceneDesc desc = lockstep_test_scene();
   const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(8.0f, 6.0f, 4.0f));

@@ -489,9 +489,9 @@ float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, c
 }
 
 EmitterSample Emitters::triangle_point(const Emitter& e, int half, const Barycentrics& b) const {
-  const Vec3& c0 = half == 0 ? e.p0 : e.p1;
-  const Vec3& c1 = half == 0 ? e.p1 : e.p3;
-  const Vec3& c2 = e.p2;
+  const Vec3& c0 = e.corner0(half);
+  const Vec3& c1 = e.corner1(half);
+  const Vec3& c2 = e.corner2(half);
   EmitterSample s;
   s.p = c0 * b.b0 + c1 * b.b1 + c2 * b.b2;
   s.p_error = (abs(c0 * b.b0) + abs(c1 * b.b1) + abs(c2 * b.b2)) * kHitRelativeError + Vec3(e.quad_slack);

@@ -99,6 +99,10 @@ class Emitters {
     float longest_edge2 = 0;  // triangles and quads: squared length of a half's longest edge
     bool textured = false;  // the emission varies over the surface: uvs are needed
     bool double_sided = false;  // triangles and quads: emits from the back face too
+    // Half A's (0) or half B's (1) corners, in the order barycentrics weigh them.
+    const Vec3& corner0(int half) const { return half == 0 ? p0 : p1; }
+    const Vec3& corner1(int half) const { return half == 0 ? p1 : p3; }
+    const Vec3& corner2(int) const { return p2; }
   };
 
   // A point sample_light would place by area on an untextured triangle or quad (far from it, see
@@ -110,9 +114,9 @@ class Emitters {
     Barycentrics b;   // the point's, in that half
     float pmf = 0;    // of choosing the light
     // The half's corners, as triangle_point takes them.
-    const Vec3& c0() const { return half == 0 ? light->p0 : light->p1; }
-    const Vec3& c1() const { return half == 0 ? light->p1 : light->p3; }
-    const Vec3& c2() const { return light->p2; }
+    const Vec3& c0() const { return light->corner0(half); }
+    const Vec3& c1() const { return light->corner1(half); }
+    const Vec3& c2() const { return light->corner2(half); }
   };
   enum class Draw {
     kNothing,  // sample_light's pdf is 0: no light, its back, or no area

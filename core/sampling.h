@@ -15,12 +15,19 @@ namespace prism {
 struct SinCos {
   float sin, cos;
 };
+// The polynomials for one angle (T float) or for eight lanes' (T a vector of floats, as
+// integrators/lane_bounce.cpp takes it): each float constant stands for its value in every lane,
+// so every lane gets the bits the float form gives.
+template <class T>
+[[gnu::always_inline]] inline void sin_cos_quarter_of(T a, T& s, T& c) {
+  const T a2 = a * a;
+  s = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
+  c = 1.0f + a2 * (-0.5f + a2 * (1.0f / 24 + a2 * (-1.0f / 720 + a2 * (1.0f / 40320 + a2 * (-1.0f / 3628800)))));
+}
 inline SinCos sin_cos_quarter(float a) {
-  const float a2 = a * a;
-  const float s = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
-  const float c =
-      1.0f + a2 * (-0.5f + a2 * (1.0f / 24 + a2 * (-1.0f / 720 + a2 * (1.0f / 40320 + a2 * (-1.0f / 3628800)))));
-  return {s, c};
+  SinCos sc;
+  sin_cos_quarter_of(a, sc.sin, sc.cos);
+  return sc;
 }
 
 // Concentric square-to-disk map (Shirley and Chiu, "A Low Distortion Map Between Disk and

@@ -4,23 +4,13 @@
 #include <iterator>
 
 #include "core/constants.h"
+#include "core/sampling.h"
 #include "integrators/lane_math.h"
 
 namespace prism {
 namespace {
 
 using namespace lanes;
-
-// sin_cos_quarter (core/sampling.h), the same polynomials.
-[[gnu::always_inline]] inline void sin_cos_quarter(F8 a, F8& s, F8& c) {
-  const F8 a2 = a * a;
-  s = a * (splat(1.0f) +
-           a2 * (splat(-1.0f / 6) + a2 * (splat(1.0f / 120) + a2 * (splat(-1.0f / 5040) + a2 * splat(1.0f / 362880)))));
-  c = splat(1.0f) +
-      a2 * (splat(-0.5f) +
-            a2 * (splat(1.0f / 24) +
-                  a2 * (splat(-1.0f / 720) + a2 * (splat(1.0f / 40320) + a2 * splat(-1.0f / 3628800)))));
-}
 
 // Lanes first to first + 7: the cosine-weighted direction (sample_cosine_hemisphere, through the
 // concentric map), its value and density, Bsdf::sample's checks, and the next ray's origin.
@@ -38,7 +28,7 @@ using namespace lanes;
   const M8 x_major = absolute(ox) > absolute(oy);
   const F8 r = pick(x_major, ox, oy);
   F8 sine, cosine;
-  sin_cos_quarter(splat(kPiOver4) * (pick(x_major, oy, ox) / r), sine, cosine);
+  sin_cos_quarter_of(splat(kPiOver4) * (pick(x_major, oy, ox) / r), sine, cosine);
   const F8 dx = pick(centre, splat(0.0f), pick(x_major, r * cosine, r * sine));
   const F8 dy = pick(centre, splat(0.0f), pick(x_major, r * sine, r * cosine));
   const F8 below = splat(1.0f) - dx * dx - dy * dy;

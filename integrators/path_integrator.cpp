@@ -142,15 +142,13 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf,
+bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe,
                                         const Bounce& bounce, const Path& path, const MaterialDesc& material,
                                         const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
                                         LaneLightBatch& lanes) const {
-  // lane_direct_light's case: no caster aims the bounce, nothing absorbs on either side of the
-  // surface (beer_lambert is 1), and the lobe is Lambertian's alone.
+  // lane_direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
+  // surface (beer_lambert is 1).
   if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
-  const std::optional<Bsdf::LambertianLobe> lobe = bsdf.lambertian_lobe();
-  if (!lobe) return false;
   Emitters::AreaDraw draw;
   switch (scene.emitters().area_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
     case Emitters::Draw::kNothing: return true;
@@ -158,7 +156,7 @@ bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hi
     case Emitters::Draw::kByArea: break;
   }
   const MaterialDesc& light = scene.desc().material(draw.light->material);
-  lanes.add(hit.p, hit.p_error, hit.ng, hit.triangle, *lobe, path.beta, draw,
+  lanes.add(hit.p, hit.p_error, hit.ng, hit.triangle, lobe, path.beta, draw,
             light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
@@ -251,9 +249,12 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   Bounce bounce;
   choose_bounce(scene, hit, bsdf, bounce);
 
+  // The Lambertian lobe alone is the lanes' case.
+  const std::optional<Bsdf::LambertianLobe> lobe = lanes ? bsdf.lambertian_lobe() : std::nullopt;
+
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && !bsdf.is_delta()) {
-    if (!(lanes && queue_direct_light(scene, hit, bsdf, bounce, path, material, u, at, shadow, lanes->lights))) {
+    if (!(lobe && queue_direct_light(scene, hit, *lobe, bounce, path, material, u, at, shadow, lanes->lights))) {
       shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
       if (shadow.cast) {
         ++counters.shadow;
@@ -265,11 +266,10 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
 
   // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes (lane_bounce); li_packet
   // then finishes it with scatter().
-  if (lanes && !(bounce.share > 0))
-    if (const std::optional<Bsdf::LambertianLobe> lobe = bsdf.lambertian_lobe()) {
-      lanes->bounces.add(hit, *lobe, u.direction);
-      return Step::kInLanes;
-    }
+  if (lobe && !(bounce.share > 0)) {
+    lanes->bounces.add(hit, *lobe, u.direction);
+    return Step::kInLanes;
+  }
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
   std::optional<BsdfSample> bs;
   int cone = -1;  // the caster's cone an aimed direction was drawn in

@@ -66,12 +66,12 @@ class PathIntegrator final : public Integrator {
   // False when the path ends.
   bool scatter(Path& path, const SurfaceHit& hit, const BsdfSample& bs, const MaterialDesc& material, bool from_front,
                float u_roulette, RayCounters& counters, const Vec3* origin = nullptr) const;
-  // Next-event estimation by lane_direct_light where the vertex and its light draw allow it: adds
-  // a lane to `lanes` (true, shadow.queued) or finds there is no light to sample (true); false:
-  // direct_light's case.
-  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,
-                          const Path& path, const MaterialDesc& material, const VertexSamples& u, const Arrival& at,
-                          ShadowQuery& shadow, LaneLightBatch& lanes) const;
+  // Next-event estimation by lane_direct_light at a vertex with a Lambertian lobe, where the vertex
+  // and its light draw allow it: adds a lane to `lanes` (true, shadow.queued) or finds there is no
+  // light to sample (true); false: direct_light's case.
+  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe,
+                          const Bounce& bounce, const Path& path, const MaterialDesc& material,
+                          const VertexSamples& u, const Arrival& at, ShadowQuery& shadow, LaneLightBatch& lanes) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
   // sky, light: the light sample's sky direction and the light, when the caller drew them

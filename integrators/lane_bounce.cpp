@@ -12,15 +12,14 @@ namespace {
 
 using namespace lanes;
 
-// Lanes first to first + 7: the cosine-weighted direction (sample_cosine_hemisphere, through the
+// Lanes first to first + 7: the lobe's frame, the cosine-weighted direction (sample_cosine_hemisphere, through the
 // concentric map), its value and density, Bsdf::sample's checks, and the next ray's origin.
 [[gnu::always_inline]] inline void eight_lanes(const LaneBounceBatch& batch, int first, LaneBounce* out) {
   using B = LaneBounceBatch;
   const int f = first;
-  const V8 s = rows(batch, B::kS, f), t = rows(batch, B::kT, f), n = rows(batch, B::kN, f);
-  const V8 bsdf_ng = rows(batch, B::kBsdfNg, f), p = rows(batch, B::kP, f), p_error = rows(batch, B::kPError, f);
-  const V8 ng = rows(batch, B::kNg, f), albedo_f = rows(batch, B::kF, f);
-  const F8 wo_dot_ng = row(batch, B::kWoDotNg, f), wo_z = row(batch, B::kWoZ, f);
+  const V8 ng = rows(batch, B::kNg, f), p = rows(batch, B::kP, f), p_error = rows(batch, B::kPError, f);
+  const V8 albedo_f = rows(batch, B::kF, f);
+  const Lobe lobe = lambertian_lobe(batch, f);
   const F8 ux = row(batch, B::kUx, f), uy = row(batch, B::kUy, f);
   // sample_uniform_disk_concentric: the wedge pair u falls in, the angle's sine and cosine.
   const F8 ox = splat(2.0f) * ux - splat(1.0f), oy = splat(2.0f) * uy - splat(1.0f);
@@ -34,10 +33,11 @@ using namespace lanes;
   const F8 below = splat(1.0f) - dx * dx - dy * dy;
   const F8 z = root(pick(splat(0.0f) < below, below, splat(0.0f)));
   // Frame::to_world, Lambertian's f |cos| and density, and Bsdf::consistent.
-  const V8 wi = add(add(mul(s, dx), mul(t, dy)), mul(n, z));
+  const V8 wi = add(add(mul(lobe.s, dx), mul(lobe.t, dy)), mul(lobe.n, z));
   const F8 pdf = pick(z < 0, splat(0.0f), z) * splat(kInvPi);
   const V8 f_cos = mul(albedo_f, absolute(z));
-  const M8 sampled = (pdf > 0) & consistent(wi, z, bsdf_ng, wo_dot_ng, wo_z) & any_nonzero(f_cos);
+  const M8 sampled =
+      lobe.valid & (pdf > 0) & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & any_nonzero(f_cos);
   // spawn_ray's origin.
   const V8 origin = offset_ray_origin(p, p_error, ng, wi);
   const F8 fields[] = {wi.x, wi.y, wi.z, origin.x, origin.y, origin.z, f_cos.x, f_cos.y, f_cos.z, pdf};
@@ -58,18 +58,8 @@ using namespace lanes;
 
 }  // namespace
 
-int LaneBounceBatch::add(const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe, Vec2 u) {
-  const int lane = next_lane();
-  set(kS, lane, lobe.frame.s);
-  set(kT, lane, lobe.frame.t);
-  set(kN, lane, lobe.frame.n);
-  set(kBsdfNg, lane, lobe.ng);
-  set(kP, lane, hit.p);
-  set(kPError, lane, hit.p_error);
-  set(kNg, lane, hit.ng);
-  set(kF, lane, lobe.f);
-  set(kWoDotNg, lane, lobe.wo_dot_ng);
-  set(kWoZ, lane, lobe.wo_z);
+int LaneBounceBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, Vec2 u) {
+  const int lane = add_surface(surface, p, p_error);
   set(kUx, lane, u.x);
   set(kUy, lane, u.y);
   return lane;

@@ -1,31 +1,26 @@
 // LaneBounceBatch, lane_bounce: the Lambertian lobe's cosine-weighted bounce and the next ray's origin, in SIMD lanes.
 #pragma once
 
-#include "core/surface_hit.h"
 #include "core/vec3.h"
-#include "integrators/lane_rows.h"
-#include "materials/bsdf.h"
+#include "integrators/lane_lambertian_lobe.h"
 
 namespace prism {
 
 // A bounce request's fields; rows of three hold a vector's x, y and z.
-struct LaneBounceFields {
-  enum Row {
-    kS = 0, kT = 3, kN = 6, kBsdfNg = 9, kP = 12, kPError = 15, kNg = 18, kF = 21,  // rows of three
-    kWoDotNg = 24, kWoZ, kUx, kUy, kRows
-  };
+struct LaneBounceFields : LambertianSurfaceFields {
+  enum Row { kUx = kSurfaceRows, kUy, kRows };
 };
 
 // Up to kLanes Lambertian vertices' bounces.
-class LaneBounceBatch : public LaneBounceFields, public LaneRows<LaneBounceFields::kRows> {
+class LaneBounceBatch : public LaneBounceFields, public LambertianLaneRows<LaneBounceFields::kRows> {
  public:
-  // A vertex at `hit` with its Lambertian lobe and its direction draw. Returns its lane. At most
-  // kLanes.
-  int add(const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe, Vec2 u);
+  // A vertex: its surface, its point and the point's error bound, and its direction draw. Returns
+  // its lane. At most kLanes.
+  int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, Vec2 u);
 };
 
-// What Bsdf::sample gives for a Lambertian lobe (sampled false where it gives nothing), and the
-// origin spawn_ray would give the ray leaving the hit along wi.
+// What Bsdf::sample gives for the vertex's Lambertian lobe (sampled false where it gives nothing),
+// and the origin spawn_ray would give the ray leaving the hit along wi.
 struct LaneBounce {
   Vec3 wi, origin;
   Rgb f_cos;

@@ -11,21 +11,20 @@ namespace {
 
 using namespace lanes;
 
-// Lanes first to first + 7 of the batch: the light sample, the lobe, the shadow ray and the
-// contribution.
+// Lanes first to first + 7 of the batch: the lobe's frame, the light sample, the lobe's value, the
+// shadow ray and the contribution.
 [[gnu::always_inline]] inline void eight_lanes(const LaneLightBatch& batch, int first, LaneLightResult* out) {
   using B = LaneLightBatch;
   const int f = first;
   const struct {
-    V8 p, p_error, ng, bsdf_n, bsdf_ng, f, beta, c0, c1, c2, light_n, emission;
-    F8 wo_dot_ng, wo_z, b0, b1, b2, quad_slack, pdf_area, pmf, double_sided;
-  } l{rows(batch, B::kP, f),          rows(batch, B::kPError, f),   rows(batch, B::kNg, f),
-      rows(batch, B::kBsdfN, f),      rows(batch, B::kBsdfNg, f),   rows(batch, B::kF, f),
-      rows(batch, B::kBeta, f),       rows(batch, B::kC0, f),       rows(batch, B::kC1, f),
-      rows(batch, B::kC2, f),         rows(batch, B::kLightN, f),   rows(batch, B::kEmission, f),
-      row(batch, B::kWoDotNg, f),     row(batch, B::kWoZ, f),       row(batch, B::kB0, f),
-      row(batch, B::kB1, f),          row(batch, B::kB2, f),        row(batch, B::kSlack, f),
-      row(batch, B::kPdfArea, f),     row(batch, B::kPmf, f),       row(batch, B::kDoubleSided, f)};
+    V8 p, p_error, ng, f, beta, c0, c1, c2, light_n, emission;
+    F8 b0, b1, b2, quad_slack, pdf_area, pmf, double_sided;
+  } l{rows(batch, B::kP, f),      rows(batch, B::kPError, f), rows(batch, B::kNg, f),      rows(batch, B::kF, f),
+      rows(batch, B::kBeta, f),   rows(batch, B::kC0, f),     rows(batch, B::kC1, f),      rows(batch, B::kC2, f),
+      rows(batch, B::kLightN, f), rows(batch, B::kEmission, f), row(batch, B::kB0, f),     row(batch, B::kB1, f),
+      row(batch, B::kB2, f),      row(batch, B::kSlack, f),   row(batch, B::kPdfArea, f),  row(batch, B::kPmf, f),
+      row(batch, B::kDoubleSided, f)};
+  const Lobe lobe = lambertian_lobe(batch, f);
   // Emitters::triangle_point and area_to_solid_angle, then the light's pick probability.
   const V8 w0 = mul(l.c0, l.b0), w1 = mul(l.c1, l.b1), w2 = mul(l.c2, l.b2);
   const V8 lp = add(add(w0, w1), w2);
@@ -43,8 +42,8 @@ using namespace lanes;
   const M8 emits = (l.double_sided != 0) | ~(dot(l.light_n, back) <= 0);
   const V8 incident = pick(emits, l.emission, V8{});
   // Bsdf::evaluate for the Lambertian lobe alone: consistent(), then f |cos| and the cosine density.
-  const F8 z = dot(wi, l.bsdf_n);
-  const M8 above = consistent(wi, z, l.bsdf_ng, l.wo_dot_ng, l.wo_z) & (z > 0) & (l.wo_z > 0);
+  const F8 z = dot(wi, lobe.n);
+  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
   const V8 f_cos = pick(above, mul(l.f, absolute(z)), V8{});
   const F8 bsdf_pdf = pick(above, z * splat(kInvPi), splat(0.0f));
   const M8 cast = (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
@@ -76,19 +75,10 @@ using namespace lanes;
 
 }  // namespace
 
-int LaneLightBatch::add(const Vec3& p, const Vec3& p_error, const Vec3& ng, TriangleId leaves,
-                        const Bsdf::LambertianLobe& lobe, const Rgb& beta, const Emitters::AreaDraw& light,
-                        const Rgb& emission, bool double_sided) {
-  const int lane = next_lane();
-  set(kP, lane, p);
-  set(kPError, lane, p_error);
-  set(kNg, lane, ng);
+int LaneLightBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, TriangleId leaves,
+                        const Rgb& beta, const Emitters::AreaDraw& light, const Rgb& emission, bool double_sided) {
+  const int lane = add_surface(surface, p, p_error);
   leaves_[lane] = leaves;
-  set(kBsdfN, lane, lobe.frame.n);
-  set(kBsdfNg, lane, lobe.ng);
-  set(kWoDotNg, lane, lobe.wo_dot_ng);
-  set(kWoZ, lane, lobe.wo_z);
-  set(kF, lane, lobe.f);
   set(kBeta, lane, beta);
   set(kC0, lane, light.c0());
   set(kC1, lane, light.c1());

@@ -4,29 +4,27 @@
 #include "core/emitters.h"
 #include "core/ray.h"
 #include "core/vec3.h"
-#include "integrators/lane_rows.h"
-#include "materials/bsdf.h"
+#include "integrators/lane_lambertian_lobe.h"
 
 namespace prism {
 
 // A light request's fields; rows of three hold a vector's x, y and z.
-struct LaneLightFields {
+struct LaneLightFields : LambertianSurfaceFields {
   enum Row {
-    kP = 0, kPError = 3, kNg = 6, kBsdfN = 9, kBsdfNg = 12, kF = 15, kBeta = 18, kC0 = 21, kC1 = 24, kC2 = 27,
-    kLightN = 30, kEmission = 33,  // the rows of three above, one each below
-    kWoDotNg = 36, kWoZ, kB0, kB1, kB2, kSlack, kPdfArea, kPmf, kDoubleSided, kRows
+    kBeta = kSurfaceRows, kC0 = kBeta + 3, kC1 = kC0 + 3, kC2 = kC1 + 3, kLightN = kC2 + 3,
+    kEmission = kLightN + 3,  // the rows of three above, one each below
+    kB0 = kEmission + 3, kB1, kB2, kSlack, kPdfArea, kPmf, kDoubleSided, kRows
   };
 };
 
 // Up to kLanes vertices' light requests. Outside every volume only: no medium absorbs.
-class LaneLightBatch : public LaneLightFields, public LaneRows<LaneLightFields::kRows> {
+class LaneLightBatch : public LaneLightFields, public LambertianLaneRows<LaneLightFields::kRows> {
  public:
-  // A vertex: its hit's point, the point's error bound, its geometric normal and triangle, its
-  // Lambertian lobe and the path's throughput, with the light point drawn for it
-  // (Emitters::area_draw) and that light's emitted radiance (0 where it emits nothing) and
-  // sidedness. Returns its lane. At most kLanes.
-  int add(const Vec3& p, const Vec3& p_error, const Vec3& ng, TriangleId leaves, const Bsdf::LambertianLobe& lobe,
-          const Rgb& beta, const Emitters::AreaDraw& light, const Rgb& emission, bool double_sided);
+  // A vertex: its surface, its hit's point, the point's error bound and triangle, and the path's
+  // throughput, with the light point drawn for it (Emitters::area_draw) and that light's emitted
+  // radiance (0 where it emits nothing) and sidedness. Returns its lane. At most kLanes.
+  int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, TriangleId leaves, const Rgb& beta,
+          const Emitters::AreaDraw& light, const Rgb& emission, bool double_sided);
   TriangleId leaves(int lane) const { return leaves_[lane]; }
 
  private:

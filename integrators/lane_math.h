@@ -64,7 +64,7 @@ struct V8 {
 }
 
 // Bsdf::consistent lane by lane: shading and geometric normals agree on wi's side. z: wi's cosine
-// about the shading normal; ng, wo_dot_ng, wo_z: the BSDF's (Bsdf::LambertianLobe).
+// about the shading normal; ng, wo_dot_ng, wo_z: the BSDF's (lanes::Lobe).
 [[gnu::always_inline]] inline M8 consistent(const V8& wi, F8 z, const V8& ng, F8 wo_dot_ng, F8 wo_z) {
   const F8 geometric = dot(wi, ng) * wo_dot_ng;
   const F8 shading = z * wo_z;

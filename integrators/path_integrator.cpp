@@ -142,7 +142,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe,
+bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const LambertianSurface& surface,
                                         const Bounce& bounce, const Path& path, const MaterialDesc& material,
                                         const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
                                         LaneLightBatch& lanes) const {
@@ -156,7 +156,7 @@ bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hi
     case Emitters::Draw::kByArea: break;
   }
   const MaterialDesc& light = scene.desc().material(draw.light->material);
-  lanes.add(hit.p, hit.p_error, hit.ng, hit.triangle, lobe, path.beta, draw,
+  lanes.add(surface, hit.p, hit.p_error, hit.triangle, path.beta, draw,
             light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
@@ -244,18 +244,27 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   }
 
   const VertexSamples& u = *at.draws;
-  const Bsdf bsdf = make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
+  const float eta = path.media.interface_eta(material, hit.material, from_front);
+  const SurfaceParams params = surface_params(desc, material, hit.uv, hit.uv_width());
+  const Vec3 ns = shading_normal(desc, material, hit);
+  // The Lambertian lobe alone is the lanes' case: they make its frame themselves, and its Bsdf is
+  // built only where the scalar code below needs it (casters that may aim the bounce, a light
+  // sample lane_direct_light does not take).
+  const bool in_lanes = lanes && Bsdf::lambertian_only(params, eta);
+  std::optional<Bsdf> built;
+  const auto bsdf = [&]() -> const Bsdf& {
+    if (!built) built.emplace(params, ns, hit.ng, wo, eta);
+    return *built;
+  };
+  const LambertianSurface surface{ns, hit.ng, wo, in_lanes ? Lambertian{params.base_color}.f() : Rgb(0.0f)};
 
   Bounce bounce;
-  choose_bounce(scene, hit, bsdf, bounce);
-
-  // The Lambertian lobe alone is the lanes' case.
-  const std::optional<Bsdf::LambertianLobe> lobe = lanes ? bsdf.lambertian_lobe() : std::nullopt;
+  if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) choose_bounce(scene, hit, bsdf(), bounce);
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
-  if (!emitters.empty() && !bsdf.is_delta()) {
-    if (!(lobe && queue_direct_light(scene, hit, *lobe, bounce, path, material, u, at, shadow, lanes->lights))) {
-      shadow = direct_light(scene, hit, bsdf, bounce, path.media, material, from_front, u, at.sky_light, at.light);
+  if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
+    if (!(in_lanes && queue_direct_light(scene, hit, surface, bounce, path, material, u, at, shadow, lanes->lights))) {
+      shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light);
       if (shadow.cast) {
         ++counters.shadow;
         shadow.contribution = beta * shadow.contribution;
@@ -266,8 +275,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
 
   // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes (lane_bounce); li_packet
   // then finishes it with scatter().
-  if (lobe && !(bounce.share > 0)) {
-    lanes->bounces.add(hit, *lobe, u.direction);
+  if (in_lanes && !(bounce.share > 0)) {
+    lanes->bounces.add(surface, hit.p, hit.p_error, u.direction);
     return Step::kInLanes;
   }
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
@@ -276,13 +285,13 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   if (bounce.share > 0 && u.lobe < bounce.share) {
     bs.emplace();
     bs->wi = bounce.casters->sample(u.lobe / bounce.share, u.direction, &cone);
-    const Bsdf::Value v = bsdf.evaluate(bs->wi);
+    const Bsdf::Value v = bsdf().evaluate(bs->wi);
     bs->f_cos = v.f_cos;
     bs->pdf = v.pdf;
   } else {
     const float u_lobe =
         bounce.share > 0 ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f) : u.lobe;
-    bs = bsdf.sample(u_lobe, u.direction);
+    bs = bsdf().sample(u_lobe, u.direction);
   }
   if (!bs) return Step::kEnds;
   if (bounce.share > 0) {

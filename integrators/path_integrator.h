@@ -69,7 +69,7 @@ class PathIntegrator final : public Integrator {
   // Next-event estimation by lane_direct_light at a vertex with a Lambertian lobe, where the vertex
   // and its light draw allow it: adds a lane to `lanes` (true, shadow.queued) or finds there is no
   // light to sample (true); false: direct_light's case.
-  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf::LambertianLobe& lobe,
+  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const LambertianSurface& surface,
                           const Bounce& bounce, const Path& path, const MaterialDesc& material,
                           const VertexSamples& u, const Arrival& at, ShadowQuery& shadow, LaneLightBatch& lanes) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray

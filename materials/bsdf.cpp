@@ -29,10 +29,8 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   wo_ = frame_.to_local(wo);
   if (wo_.z == 0) valid_ = false;
 
-  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
-  // No metal, no transmission, and a specular layer that reflects nothing (no index step, or no
-  // weight): the mixture is the Lambertian lobe alone, with weight and pick probability 1.
-  if (m == 0 && t == 0 && (eta == 1.0f || !(p.specular > 0))) {
+  // The Lambertian lobe alone has weight and pick probability 1.
+  if (lambertian_only(p, eta)) {
     lambertian_ = true;
     weight_[kDiffuse] = pick_[kDiffuse] = 1;
     only_lobe_ = kDiffuse;
@@ -40,6 +38,7 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
     return;
   }
   // The other lobes are built only here: a plain diffuse surface does not pay for them.
+  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
   const float alpha = p.roughness * p.roughness;
   metal_.emplace(p.base_color, alpha);
   dielectric_.emplace(eta, alpha, p.base_color,
@@ -71,6 +70,11 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
     }
   }
   if (non_delta != 1) only_lobe_ = -1;
+}
+
+bool Bsdf::lambertian_only(const SurfaceParams& p, float eta) {
+  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
+  return m == 0 && t == 0 && (eta == 1.0f || !(p.specular > 0));
 }
 
 Rgb Bsdf::straight_through() const {

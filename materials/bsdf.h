@@ -46,18 +46,10 @@ class Bsdf {
   const Vec3& normal() const { return frame_.n; }
   // True when every lobe with weight is a delta lobe: next-event estimation cannot help.
   bool is_delta() const { return delta_only_; }
-  // The Lambertian lobe alone, as evaluate() weighs it, for next-event estimation in SIMD lanes
-  // (integrators/lane_direct_light.h): null for any other mixture, or a BSDF that is black.
-  struct LambertianLobe {
-    Frame frame;  // about the normal cosines are taken about
-    Vec3 ng;      // the geometric normal, mirrored to wo's side
-    float wo_dot_ng = 0, wo_z = 0;
-    Rgb f;        // albedo / pi
-  };
-  std::optional<LambertianLobe> lambertian_lobe() const {
-    if (!lambertian_ || !valid_) return std::nullopt;
-    return LambertianLobe{frame_, ng_, wo_dot_ng_, wo_.z, diffuse_.f()};
-  }
+  // Whether the mixture at a point with these parameters and eta is the Lambertian lobe alone: no
+  // metal, no transmission, and a specular layer that reflects nothing (no index step, or no
+  // weight). SIMD kernels make that lobe's frame themselves (integrators/lane_lambertian_lobe.h).
+  static bool lambertian_only(const SurfaceParams& params, float eta);
   // True when no lobe transmits: every direction it scatters to stays on wo's side.
   bool reflects_only() const { return weight_[kDielectric] == 0; }
   // What passes straight through a smooth thin-walled sheet along -wo: the weight sample()'s

@@ -267,14 +267,11 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       e.area = 1;
       const float u = rng.next_float(), v = rng.next_float() * (1 - u);
       draw[k] = {&e, 0, {1.0f - u - v, u, v}, 1.0f};
-      // A lobe that sees the light: its normal toward the light's first corner, wo along it.
+      // A surface that sees the light: its shading normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
-      Bsdf::LambertianLobe lobe;
-      lobe.ng = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
-      lobe.frame = Frame::from_normal(lobe.ng);
-      lobe.wo_dot_ng = lobe.wo_z = 1;
-      lobe.f = Rgb(1.0f);
-      batch.add(from[k].p, from[k].p_error, from[k].ng, from[k].triangle, lobe, Rgb(1.0f), draw[k], Rgb(1.0f), true);
+      const Vec3 toward = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
+      batch.add({toward, from[k].ng, toward, Rgb(1.0f)}, from[k].p, from[k].p_error, from[k].triangle, Rgb(1.0f),
+                draw[k], Rgb(1.0f), true);
     }
     LaneLightResult out[LaneLightBatch::kLanes], sse[LaneLightBatch::kLanes];
     lane_direct_light(batch, out);
@@ -308,17 +305,20 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
 }
 
 // The lanes' bounces are Bsdf::sample's for a Lambertian lobe and their rays' origins spawn_ray's,
-// bit for bit, with AVX2 and without: shading normals leaning off the face (the lobe's frame is
-// not the face's), seen from either side, with draws on the square's edges and at its centre.
+// bit for bit, with AVX2 and without, the lobe's frame made in lanes from the Bsdf constructor's
+// inputs: shading normals leaning off the face (bent toward a grazing wo, mirrored, or facing
+// into the surface), seen from either side and along the face's plane, with draws on the square's
+// edges and at its centre.
 TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   Pcg32 rng(45, 46);
   const float edges[] = {0.0f, 0.5f, 0x1.fffffep-1f};
-  int compared = 0, refused = 0;
+  int compared = 0, refused = 0, bent = 0, in_plane = 0;
   for (int round = 0; round < 3000; ++round) {
     const int n = 1 + round % LaneBounceBatch::kLanes;
     LaneBounceBatch batch;
     SurfaceHit hits[LaneBounceBatch::kLanes];
     std::optional<Bsdf> bsdfs[LaneBounceBatch::kLanes];
+    Vec3 wos[LaneBounceBatch::kLanes];
     Vec2 draws[LaneBounceBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       SurfaceHit& hit = hits[k];
@@ -326,30 +326,33 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       hit.p_error = abs(hit.p) * 1e-6f;
       hit.ng = sample_uniform_sphere({rng.next_float(), rng.next_float()});
       hit.ns = normalize(hit.ng + sample_uniform_sphere({rng.next_float(), rng.next_float()}) * 0.6f);
-      const Vec3 wo = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      if (rng.next_float() < 0.1f) hit.ns = -hit.ns;  // facing into the surface: the lobe turns it out
+      Vec3& wo = wos[k];
+      wo = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      if (rng.next_float() < 0.05f) {  // wo exactly along the face's plane: no lobe
+        hit.ng = Vec3(0, 0, 1);
+        wo = Vec3(0, 1, 0);
+      }
       SurfaceParams params;
       params.base_color = Rgb(rng.next_float(), rng.next_float(), rng.next_float());
       params.specular = 0;
       bsdfs[k].emplace(params, hit.ns, hit.ng, wo, 1.0f);
       draws[k] = rng.next_float() < 0.2f ? Vec2{edges[rng.next_u32() % 3], edges[rng.next_u32() % 3]}
                                          : Vec2{rng.next_float(), rng.next_float()};
-      const std::optional<Bsdf::LambertianLobe> lobe = bsdfs[k]->lambertian_lobe();
-      if (!lobe) {  // wo on the surface's plane, or under the bent normal: only lobes go to the lanes
-        bsdfs[k].reset();
-        continue;
-      }
-      batch.add(hit, *lobe, draws[k]);
+      batch.add({hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error, draws[k]);
     }
     LaneBounce out[LaneBounceBatch::kLanes], sse[LaneBounceBatch::kLanes];
     lane_bounce(batch, out);
     lane_bounce(batch, sse, false);
-    for (int k = 0, lane = 0; k < n; ++k) {
-      if (!bsdfs[k]) continue;
-      const LaneBounce& got = out[lane];
-      const LaneBounce& other = sse[lane++];
+    for (int k = 0; k < n; ++k) {
+      const LaneBounce& got = out[k];
+      const LaneBounce& other = sse[k];
       const std::optional<BsdfSample> expected = bsdfs[k]->sample(0.5f, draws[k]);
       ASSERT_EQ(got.sampled, expected.has_value()) << "round " << round << " lane " << k;
       ASSERT_EQ(other.sampled, got.sampled);
+      const Vec3& n_used = bsdfs[k]->normal();
+      if (!(n_used == hits[k].ns || n_used == -hits[k].ns)) ++bent;
+      if (dot(wos[k], hits[k].ng) == 0) ++in_plane;
       if (!expected) {
         ++refused;
         continue;
@@ -370,6 +373,8 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   }
   EXPECT_GT(compared, 20000);
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
+  EXPECT_GT(bent, 100);
+  EXPECT_GT(in_plane, 100);
 }
 
 // The same where a light tree chooses the lights, ahead of shading (Emitters::pick_many).

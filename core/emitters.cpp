@@ -29,11 +29,6 @@ float area_to_solid_angle(float pdf_area, const Vec3& ref, const Vec3& p, const 
   return cos_p > 0 ? pdf_area * dist2 / cos_p : 0.0f;
 }
 
-// Solid angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle) stay
-// with area sampling, as in pbrt-v4, where the spherical construction loses precision.
-constexpr float kMinSolidAngle = 3e-4f;
-constexpr float kMaxSolidAngle = 6.22f;
-
 }  // namespace
 
 Rgb mean_emission(const SceneDesc& desc, const MaterialDesc& m) {
@@ -461,8 +456,8 @@ int Emitters::area_point_draw(const Emitter& e, Vec2 u, Barycentrics& b) {
   return 1;
 }
 
-Emitters::Draw Emitters::area_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n,
-                                   float u_spare, Vec2 u, AreaDraw& out) const {
+Emitters::Draw Emitters::triangle_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n,
+                                       float u_spare, Vec2 u, TriangleDraw& out) const {
   const std::optional<Pick> picked = chosen ? *chosen : pick(ref, ref_n, u.x);
   if (!picked) return Draw::kNothing;
   if (picked->index >= emitters_.size()) return Draw::kOther;  // punctual or the environment
@@ -470,12 +465,13 @@ Emitters::Draw Emitters::area_draw(const std::optional<Pick>* chosen, const Vec3
   if (e.sphere || e.textured) return Draw::kOther;
   const float plane_distance = dot(ref - e.p0, e.normal);
   if (!(e.area > 0) || !faces(e, plane_distance)) return Draw::kNothing;
-  if (near_enough(e, plane_distance)) return Draw::kOther;  // perhaps by solid angle
   u.x = point_draw(*picked, u_spare);
   out.light = &e;
+  out.u = u;
+  out.near = near_enough(e, plane_distance);
   out.half = area_point_draw(e, u, out.b);
   out.pmf = picked->pmf;
-  return Draw::kByArea;
+  return Draw::kOnTriangle;
 }
 
 float Emitters::triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const {

@@ -105,28 +105,31 @@ class Emitters {
     const Vec3& corner2(int) const { return p2; }
   };
 
-  // A point sample_light would place by area on an untextured triangle or quad (far from it, see
-  // near_enough), as triangle_point takes it, for next-event estimation in SIMD lanes
-  // (integrators/lane_direct_light.h), which finishes the sample bit for bit as sample_light does.
-  struct AreaDraw {
+  // A draw sample_light would make on an untextured triangle or quad, for next-event estimation in
+  // SIMD lanes (integrators/lane_direct_light.h), which finishes the sample bit for bit as
+  // sample_light does: by solid angle where `near` and the solid angle pays (SolidAngleView), else
+  // the point by area.
+  struct TriangleDraw {
     const Emitter* light = nullptr;
-    int half = 0;     // of a quad: 0 (A) or 1 (B)
-    Barycentrics b;   // the point's, in that half
+    Vec2 u;           // the point's draw (u.x rescaled, point_draw)
+    bool near = false;  // near_enough: by solid angle, where it pays
+    int half = 0;     // the point by area: in half A (0) or a quad's half B (1)
+    Barycentrics b;   // and its barycentrics there
     float pmf = 0;    // of choosing the light
-    // The half's corners, as triangle_point takes them.
-    const Vec3& c0() const { return light->corner0(half); }
-    const Vec3& c1() const { return light->corner1(half); }
-    const Vec3& c2() const { return light->corner2(half); }
   };
   enum class Draw {
-    kNothing,  // sample_light's pdf is 0: no light, its back, or no area
-    kByArea,   // `out` holds the point's draw
-    kOther,    // another kind of sample: sample_light makes it
+    kNothing,     // sample_light's pdf is 0: no light, its back, or no area
+    kOnTriangle,  // `out` holds the draw
+    kOther,       // another kind of sample: sample_light makes it
   };
+  // Solid angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle)
+  // stay with area sampling, as in pbrt-v4, where the spherical construction loses precision.
+  static constexpr float kMinSolidAngle = 3e-4f;
+  static constexpr float kMaxSolidAngle = 6.22f;
   // What sample_light(chosen, ref, u_spare, u) makes of this draw; `chosen` null: the light that
   // sample(ref, ref_n, u_spare, u) would choose.
-  Draw area_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
-                 AreaDraw& out) const;
+  Draw triangle_draw(const std::optional<Pick>* chosen, const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
+                     TriangleDraw& out) const;
 
   // Where the draw (u_spare, u) chooses a map's sky, and the sky has no portals, the draw it hands
   // the map: a light is chosen before the shading point is known only there (lights at infinity

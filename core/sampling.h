@@ -30,6 +30,26 @@ inline SinCos sin_cos_quarter(float a) {
   return sc;
 }
 
+// sin and cos of 0 <= a <= pi: a less the nearest multiple k of pi/2 (Cody and Waite's reduction:
+// pi/2 as a float plus what it misses; a - k x that float is exact by Sterbenz's lemma) is within
+// pi/4, where sin_cos_quarter_of holds, and k turns the result by quarter turns. `pick(m, x, y)` is
+// m ? x : y, for one angle or (with masks) for eight lanes' (integrators/lane_spherical_triangle.h).
+template <class T, class Pick>
+[[gnu::always_inline]] inline void sin_cos_half_turn_of(T a, T& s, T& c, Pick pick) {
+  constexpr float kPiOver2Low = -4.371139e-8f;  // pi/2 - kPiOver2
+  const auto second = a > 0.75f * kPi, first = a > kPiOver4;
+  const T k = pick(second, T{} + 2.0f, pick(first, T{} + 1.0f, T{} + 0.0f));
+  T sr, cr;
+  sin_cos_quarter_of((a - k * kPiOver2) - k * kPiOver2Low, sr, cr);
+  s = pick(second, -sr, pick(first, cr, sr));
+  c = pick(second, -cr, pick(first, -sr, cr));
+}
+inline SinCos sin_cos_half_turn(float a) {
+  SinCos sc;
+  sin_cos_half_turn_of(a, sc.sin, sc.cos, [](bool m, float x, float y) { return m ? x : y; });
+  return sc;
+}
+
 // Concentric square-to-disk map (Shirley and Chiu, "A Low Distortion Map Between Disk and
 // Square", JGT 1997): keeps stratification. The angle is pi/4 x (a ratio in [-1, 1]), or pi/2
 // minus that, so sin and cos come from sin_cos_quarter.

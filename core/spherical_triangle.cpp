@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/arctangent.h"
+#include "core/sampling.h"
 
 namespace prism {
 
@@ -69,8 +70,9 @@ std::optional<Barycentrics> SphericalTriangle::sample(Vec2 u) const {
   //   tau (cos(omega'/2) |a.(b x t)| - sin(omega'/2) b.t) = sin(omega'/2) (1 + a.b).
   const Vec3 t = cross(n_ac, a_) * (1.0f / sin_ac);
   const float det_t = std::abs(det_) / sin_ac;  // |a . (b x t)|
-  float sin_half, cos_half;
-  sincosf(0.5f * u.x * solid_angle_, &sin_half, &cos_half);
+  // omega' / 2 is within [0, pi]: sin_cos_half_turn, which SIMD lanes can take as well.
+  const SinCos half = sin_cos_half_turn(0.5f * u.x * solid_angle_);
+  const float sin_half = half.sin, cos_half = half.cos;
   const float tau_divisor = cos_half * det_t - sin_half * dot(b_, t);
   const float tau = sin_half * (1.0f + dot(a_, b_)) / tau_divisor;
   Vec3 c_sub = c_;  // phi passes the arc's end only by rounding: stop there

@@ -5,6 +5,7 @@
 
 #include "core/constants.h"
 #include "integrators/lane_math.h"
+#include "integrators/lane_spherical_triangle.h"
 
 namespace prism {
 namespace {
@@ -17,16 +18,40 @@ using namespace lanes;
   using B = LaneLightBatch;
   const int f = first;
   const struct {
-    V8 p, p_error, ng, f, beta, c0, c1, c2, light_n, emission;
-    F8 b0, b1, b2, quad_slack, pdf_area, pmf, double_sided;
-  } l{rows(batch, B::kP, f),      rows(batch, B::kPError, f), rows(batch, B::kNg, f),      rows(batch, B::kF, f),
-      rows(batch, B::kBeta, f),   rows(batch, B::kC0, f),     rows(batch, B::kC1, f),      rows(batch, B::kC2, f),
-      rows(batch, B::kLightN, f), rows(batch, B::kEmission, f), row(batch, B::kB0, f),     row(batch, B::kB1, f),
-      row(batch, B::kB2, f),      row(batch, B::kSlack, f),   row(batch, B::kPdfArea, f),  row(batch, B::kPmf, f),
-      row(batch, B::kDoubleSided, f)};
+    V8 p, p_error, ng, f, beta, p0, p1, p2, p3, light_n, emission;
+    F8 ux, uy, near, quad, half, b0, b1, b2, quad_slack, pdf_area, pmf, double_sided;
+  } l{rows(batch, B::kP, f),        rows(batch, B::kPError, f),  rows(batch, B::kNg, f),     rows(batch, B::kF, f),
+      rows(batch, B::kBeta, f),     rows(batch, B::kP0, f),      rows(batch, B::kP1, f),     rows(batch, B::kP2, f),
+      rows(batch, B::kP3, f),       rows(batch, B::kLightN, f),  rows(batch, B::kEmission, f), row(batch, B::kUx, f),
+      row(batch, B::kUy, f),        row(batch, B::kNear, f),     row(batch, B::kQuad, f),    row(batch, B::kHalf, f),
+      row(batch, B::kB0, f),        row(batch, B::kB1, f),       row(batch, B::kB2, f),      row(batch, B::kSlack, f),
+      row(batch, B::kPdfArea, f),   row(batch, B::kPmf, f),      row(batch, B::kDoubleSided, f)};
   const Lobe lobe = lambertian_lobe(batch, f);
-  // Emitters::triangle_point and area_to_solid_angle, then the light's pick probability.
-  const V8 w0 = mul(l.c0, l.b0), w1 = mul(l.c1, l.b1), w2 = mul(l.c2, l.b2);
+  // Emitters::sample_triangle: by solid angle where the vertex is near the light and that pays
+  // (SolidAngleView), u.x choosing a quad's half in proportion to its share and rescaled within it.
+  M8 by_solid_angle = l.near != 0, in_b{};
+  F8 solid_angle = splat(0.0f);
+  Barycentrics8 at{l.b0, l.b1, l.b2, ~M8{}};  // by area, every lane drawn
+  if (any(by_solid_angle)) {
+    const M8 quad = l.quad != 0;
+    const Corner8 c0 = see(l.p, l.p0), c1 = see(l.p, l.p1), c2 = see(l.p, l.p2);
+    const SphericalTriangle8 a = spherical_triangle(l.p, c0, c1, c2);
+    const SphericalTriangle8 b = spherical_triangle(l.p, c1, see(l.p, l.p3), c2);
+    solid_angle = a.solid_angle + pick(quad, b.solid_angle, splat(0.0f));
+    by_solid_angle &= (solid_angle >= Emitters::kMinSolidAngle) & (solid_angle <= Emitters::kMaxSolidAngle);
+    const F8 share_a = a.solid_angle / solid_angle;
+    in_b = quad & (l.ux >= share_a);
+    const F8 ux = pick(quad, minimum(pick(in_b, (l.ux - share_a) / (splat(1.0f) - share_a), l.ux / share_a),
+                                     splat(kOneMinusEpsilon)),
+                       l.ux);
+    const Barycentrics8 s = sample(pick(in_b, b, a), ux, l.uy);
+    at = {pick(by_solid_angle, s.b0, l.b0), pick(by_solid_angle, s.b1, l.b1), pick(by_solid_angle, s.b2, l.b2),
+          ~by_solid_angle | s.drawn};
+  }
+  // Emitters::triangle_point at those barycentrics of the half they are in.
+  const M8 half_b = pick(by_solid_angle, in_b, l.half != 0);
+  const V8 c0 = pick(half_b, l.p1, l.p0), c1 = pick(half_b, l.p3, l.p1), c2 = l.p2;
+  const V8 w0 = mul(c0, at.b0), w1 = mul(c1, at.b1), w2 = mul(c2, at.b2);
   const V8 lp = add(add(w0, w1), w2);
   const F8 rel = splat(kHitRelativeError);
   const V8 slack{l.quad_slack, l.quad_slack, l.quad_slack};
@@ -35,7 +60,9 @@ using namespace lanes;
   const F8 dist2 = dot(to_light, to_light);
   const F8 dist = root(dist2);
   const F8 cos_p = absolute(dot(l.light_n, to_light)) / dist;
-  const F8 pdf = pick(cos_p > 0, l.pdf_area * dist2 / cos_p, splat(0.0f)) * l.pmf;
+  // The density: 1 / solid angle, or area_to_solid_angle's; then the light's pick probability.
+  const F8 pdf =
+      pick(by_solid_angle, splat(1.0f) / solid_angle, pick(cos_p > 0, l.pdf_area * dist2 / cos_p, splat(0.0f))) * l.pmf;
   // direct_light: the direction, the radiance leaving the light toward the vertex.
   const V8 wi = mul(to_light, splat(1.0f) / dist);
   const V8 back{-wi.x, -wi.y, -wi.z};
@@ -46,7 +73,7 @@ using namespace lanes;
   const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
   const V8 f_cos = pick(above, mul(l.f, absolute(z)), V8{});
   const F8 bsdf_pdf = pick(above, z * splat(kInvPi), splat(0.0f));
-  const M8 cast = (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
+  const M8 cast = at.drawn & (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
   // spawn_ray_between: each end offset off its own surface toward the other.
   const V8 origin = offset_ray_origin(l.p, l.p_error, l.ng, to_light);
   const V8 to = offset_ray_origin(lp, lp_error, l.light_n, sub(origin, lp));
@@ -76,19 +103,26 @@ using namespace lanes;
 }  // namespace
 
 int LaneLightBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, TriangleId leaves,
-                        const Rgb& beta, const Emitters::AreaDraw& light, const Rgb& emission, bool double_sided) {
+                        const Rgb& beta, const Emitters::TriangleDraw& light, const Rgb& emission, bool double_sided) {
   const int lane = add_surface(surface, p, p_error);
   leaves_[lane] = leaves;
   set(kBeta, lane, beta);
-  set(kC0, lane, light.c0());
-  set(kC1, lane, light.c1());
-  set(kC2, lane, light.c2());
+  const Emitters::Emitter& e = *light.light;
+  set(kP0, lane, e.p0);
+  set(kP1, lane, e.p1);
+  set(kP2, lane, e.p2);
+  set(kP3, lane, e.p3);
+  set(kUx, lane, light.u.x);
+  set(kUy, lane, light.u.y);
+  set(kNear, lane, light.near ? 1.0f : 0.0f);
+  set(kQuad, lane, e.quad ? 1.0f : 0.0f);
+  set(kHalf, lane, float(light.half));
   set(kB0, lane, light.b.b0);
   set(kB1, lane, light.b.b1);
   set(kB2, lane, light.b.b2);
-  set(kLightN, lane, light.light->normal);
-  set(kSlack, lane, light.light->quad_slack);
-  set(kPdfArea, lane, 1.0f / light.light->area);
+  set(kLightN, lane, e.normal);
+  set(kSlack, lane, e.quad_slack);
+  set(kPdfArea, lane, 1.0f / e.area);
   set(kPmf, lane, light.pmf);
   set(kEmission, lane, emission);
   set(kDoubleSided, lane, double_sided ? 1.0f : 0.0f);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/arctangent.h"
 #include "core/cpu_features.h"
 #include "core/float8.h"
 #include "core/spawn.h"
@@ -36,6 +37,41 @@ struct V8 {
   return {pick(m, a.x, b.x), pick(m, a.y, b.y), pick(m, a.z, b.z)};
 }
 [[gnu::always_inline]] inline M8 any_nonzero(const V8& a) { return (a.x != 0) | (a.y != 0) | (a.z != 0); }
+// Whether any lane of m is set.
+[[gnu::always_inline]] inline bool any(M8 m) {
+  int32_t lanes[8];
+  std::memcpy(lanes, &m, sizeof m);
+  int32_t set = 0;
+  for (const int32_t lane : lanes) set |= lane;
+  return set != 0;
+}
+[[gnu::always_inline]] inline V8 cross(const V8& a, const V8& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// std::min and std::max: the first argument where neither is less (a NaN b gives a).
+[[gnu::always_inline]] inline F8 minimum(F8 a, F8 b) { return pick(b < a, b, a); }
+[[gnu::always_inline]] inline F8 maximum(F8 a, F8 b) { return pick(a < b, b, a); }
+// The bits of `magnitude` with the sign of `sign` (std::copysign).
+[[gnu::always_inline]] inline F8 copy_sign(F8 magnitude, F8 sign) {
+  constexpr int32_t kSignBit = std::numeric_limits<int32_t>::min();
+  return reinterpret_cast<F8>((reinterpret_cast<M8>(magnitude) & ~kSignBit) | (reinterpret_cast<M8>(sign) & kSignBit));
+}
+
+// atan2_fast (core/arctangent.h) lane by lane, its branches as selects.
+[[gnu::always_inline]] inline F8 atan2_fast(F8 y, F8 x) {
+  using namespace atan2_parts;
+  const F8 ax = absolute(x), ay = absolute(y);
+  const F8 hi = maximum(ax, ay), lo = minimum(ax, ay);
+  F8 a = pick(hi > 0, lo / hi, splat(0.0f));
+  a = pick(a != a, splat(1.0f), a);  // both infinite
+  const M8 reduced = a > kTanPiOver8;
+  F8 r = atan_reduced(pick(reduced, (a - 1.0f) / (a + 1.0f), a));
+  r = pick(reduced, kPi / 4 + (r + kQuarterPiLow), r);
+  r = pick(ay > ax, kPi / 2 - (r - kHalfPiLow), r);
+  const M8 negative_zero = (x == 0) & (reinterpret_cast<M8>(x) < 0);
+  r = pick((x < 0) | negative_zero, kPi - (r - kPiLow), r);
+  return pick((x != x) | (y != y), x + y, copy_sign(r, y));
+}
 
 // next_float_up (core/spawn.h) lane by lane: NaN and +inf stay, -0 steps as +0 does, and the bit
 // pattern steps away from zero for positive values, toward it for negative ones.

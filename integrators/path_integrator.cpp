@@ -149,11 +149,11 @@ bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hi
   // lane_direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
   // surface (beer_lambert is 1).
   if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
-  Emitters::AreaDraw draw;
-  switch (scene.emitters().area_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
+  Emitters::TriangleDraw draw;
+  switch (scene.emitters().triangle_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
     case Emitters::Draw::kNothing: return true;
     case Emitters::Draw::kOther: return false;
-    case Emitters::Draw::kByArea: break;
+    case Emitters::Draw::kOnTriangle: break;
   }
   const MaterialDesc& light = scene.desc().material(draw.light->material);
   lanes.add(surface, hit.p, hit.p_error, hit.triangle, path.beta, draw,

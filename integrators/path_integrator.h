@@ -33,7 +33,7 @@ class PathIntegrator final : public Integrator {
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
   // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes: next-event
-  // estimation toward area-sampled triangles and quads (lane_direct_light) and the bounce
+  // estimation toward untextured triangles and quads (lane_direct_light) and the bounce
   // (lane_bounce). On by default; either way the images are the same bits, so off serves tests
   // and measurements.
   void set_lanes(bool on) { lanes_ = on; }

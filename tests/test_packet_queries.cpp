@@ -10,6 +10,7 @@
 
 #include "core/pcg32.h"
 #include "core/sobol_sampler.h"
+#include "integrators/lane_spherical_triangle.h"
 #include "integrators/path_integrator.h"
 #include "core/sampling.h"
 #include "core/scene.h"
@@ -251,7 +252,7 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
     const int n = 1 + round % LaneLightBatch::kLanes;
     LaneLightBatch batch;
     Emitters::Emitter light[LaneLightBatch::kLanes];
-    Emitters::AreaDraw draw[LaneLightBatch::kLanes];
+    Emitters::TriangleDraw draw[LaneLightBatch::kLanes];
     SurfaceHit from[LaneLightBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       from[k].p = point();
@@ -266,7 +267,7 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       e.quad_slack = rng.next_float() < 0.5f ? 0.0f : 1e-7f;
       e.area = 1;
       const float u = rng.next_float(), v = rng.next_float() * (1 - u);
-      draw[k] = {&e, 0, {1.0f - u - v, u, v}, 1.0f};
+      draw[k] = {.light = &e, .b = {1.0f - u - v, u, v}, .pmf = 1.0f};
       // A surface that sees the light: its shading normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
       const Vec3 toward = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
@@ -283,11 +284,12 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       EXPECT_EQ(out[k].contribution, sse[k].contribution);
       EXPECT_EQ(out[k].ray.origin, sse[k].ray.origin);
       EXPECT_EQ(out[k].ray.dir, sse[k].ray.dir);
-      const Emitters::AreaDraw& l = draw[k];
-      // Emitters::triangle_point's point and error bound.
-      const Vec3 p = l.c0() * l.b.b0 + l.c1() * l.b.b1 + l.c2() * l.b.b2;
-      const Vec3 p_error = (abs(l.c0() * l.b.b0) + abs(l.c1() * l.b.b1) + abs(l.c2() * l.b.b2)) * kHitRelativeError +
-                           Vec3(l.light->quad_slack);
+      const Emitters::TriangleDraw& l = draw[k];
+      // Emitters::triangle_point's point and error bound (half A of a triangle).
+      const Vec3 p = l.light->p0 * l.b.b0 + l.light->p1 * l.b.b1 + l.light->p2 * l.b.b2;
+      const Vec3 p_error =
+          (abs(l.light->p0 * l.b.b0) + abs(l.light->p1 * l.b.b1) + abs(l.light->p2 * l.b.b2)) * kHitRelativeError +
+          Vec3(l.light->quad_slack);
       const Ray expected = spawn_ray_between(from[k], p, p_error, l.light->normal);
       const Ray& got = out[k].ray;
       for (int a = 0; a < 3; ++a) {
@@ -375,6 +377,67 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
   EXPECT_GT(bent, 100);
   EXPECT_GT(in_plane, 100);
+}
+
+// The lanes' spherical triangles are SphericalTriangle's, bit for bit: solid angles and sampled
+// barycentrics of triangles seen from near and far, slivers, triangles filling nearly a
+// hemisphere (their corners relabelled), a reference point on a corner, and draws at the ends of
+// the square.
+TEST(Lanes, SphericalTrianglesAreTheScalarOnesBits) {
+  using namespace lanes;
+  Pcg32 rng(47, 48);
+  const auto unit = [&] { return Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - Vec3(0.5f); };
+  const float ends[] = {0.0f, 0.5f, kOneMinusEpsilon};
+  int compared = 0, drawn = 0, relabelled = 0;
+  for (int round = 0; round < 4000; ++round) {
+    float ref[3][8], p[3][3][8], u[2][8];
+    Vec3 refs[8], corners[8][3];
+    Vec2 draws[8];
+    for (int k = 0; k < 8; ++k) {
+      Vec3 c[3] = {unit(), unit(), unit()};
+      const int kind = int(rng.next_u32() % 5);
+      if (kind == 1) c[2] = c[0] + (c[1] - c[0]) * rng.next_float() + unit() * 1e-4f;  // a sliver
+      const float scale = kind == 2 ? 1e4f : kind == 3 ? 1e-3f : 1.0f;
+      Vec3 r = unit() * 4.0f * scale;
+      if (kind == 4) {  // just off the triangle's middle: nearly a hemisphere, or its corner
+        r = rng.next_float() < 0.2f ? c[0] : (c[0] + c[1] + c[2]) / 3.0f + cross(c[1] - c[0], c[2] - c[0]) * 1e-3f;
+      }
+      for (Vec3& v : c) v = v * scale;
+      if (kind == 4) r = r * scale;
+      refs[k] = r;
+      draws[k] = rng.next_float() < 0.2f ? Vec2{ends[rng.next_u32() % 3], ends[rng.next_u32() % 3]}
+                                         : Vec2{rng.next_float(), rng.next_float()};
+      for (int a = 0; a < 3; ++a) {
+        ref[a][k] = r[a];
+        for (int i = 0; i < 3; ++i) p[i][a][k] = c[i][a];
+      }
+      for (int i = 0; i < 3; ++i) corners[k][i] = c[i];
+      u[0][k] = draws[k].x;
+      u[1][k] = draws[k].y;
+    }
+    const auto vec = [](float (&v)[3][8]) { return V8{load(v[0], 0), load(v[1], 0), load(v[2], 0)}; };
+    const V8 r8 = vec(ref);
+    const SphericalTriangle8 t = spherical_triangle(r8, see(r8, vec(p[0])), see(r8, vec(p[1])), see(r8, vec(p[2])));
+    const Barycentrics8 b = sample(t, load(u[0], 0), load(u[1], 0));
+    for (int k = 0; k < 8; ++k) {
+      const SphericalTriangle expected(refs[k], corners[k][0], corners[k][1], corners[k][2]);
+      ASSERT_EQ(std::bit_cast<uint32_t>(t.solid_angle[k]), std::bit_cast<uint32_t>(expected.solid_angle()))
+          << "round " << round << " lane " << k;
+      const std::optional<Barycentrics> e = expected.sample(draws[k]);
+      ASSERT_EQ(b.drawn[k] != 0, e.has_value()) << "round " << round << " lane " << k;
+      if (dot(normalize(corners[k][0] - refs[k]), normalize(corners[k][1] - refs[k])) < SphericalTriangle::kRelabelCos)
+        ++relabelled;
+      ++compared;
+      if (!e) continue;
+      ASSERT_EQ(std::bit_cast<uint32_t>(b.b0[k]), std::bit_cast<uint32_t>(e->b0)) << "round " << round << " lane " << k;
+      ASSERT_EQ(std::bit_cast<uint32_t>(b.b1[k]), std::bit_cast<uint32_t>(e->b1));
+      ASSERT_EQ(std::bit_cast<uint32_t>(b.b2[k]), std::bit_cast<uint32_t>(e->b2));
+      ++drawn;
+    }
+  }
+  EXPECT_EQ(compared, 32000);
+  EXPECT_GT(drawn, 25000);
+  EXPECT_GT(relabelled, 500);
 }
 
 // The same where a light tree chooses the lights, ahead of shading (Emitters::pick_many).

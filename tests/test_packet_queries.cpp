@@ -210,9 +210,10 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
 }
 
 // The lanes give the scalar code's bits: Lambertian walls and blocks lit by a quad seen from far
-// and near (where it is sampled by solid angle instead) and from behind (nothing to sample), and by
-// a double-sided triangle; paths through glass with absorption and past alpha-blended sheets and
-// spheres (not the lanes' case) in the same packets.
+// and near (where it is sampled by solid angle instead) and from behind (nothing to sample), by
+// a double-sided triangle, and by a quad whose emission is a texture (left to the scalar code);
+// paths through glass with absorption and past alpha-blended sheets and spheres (not the lanes'
+// case) in the same packets.
 TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   SceneDesc desc = lockstep_test_scene();
   const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(8.0f, 6.0f, 4.0f));
@@ -223,8 +224,17 @@ TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   triangle.indices = {0, 1, 2};
   triangle.material = both_faces;
   test::add_mesh(desc, std::move(triangle));
+  ImageDesc& stripes = desc.images.emplace_back();  // two texels: orange and blue
+  stripes.width = 2;
+  stripes.height = 1;
+  stripes.channels = 3;
+  stripes.texels = {4, 2, 0.5f, 0.5f, 1, 4};
+  desc.textures.push_back({.image = int(desc.images.size()) - 1, .nearest = true});
+  const int painted = test::add_material(desc, Rgb(0.0f), Rgb(1.0f), true);
+  desc.materials[size_t(painted)].emissive_texture.texture = int(desc.textures.size()) - 1;
+  test::add_quad(desc, Vec3(-1.95f, -1.0f, -1.5f), Vec3(0, 1, 0), Vec3(0, 0, 1), painted);
   const Scene scene(std::move(desc), &material_alpha);
-  ASSERT_GT(scene.emitters().size(), 1u);
+  ASSERT_GT(scene.emitters().size(), 2u);
   EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
 }
 

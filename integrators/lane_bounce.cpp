@@ -12,8 +12,9 @@ namespace {
 
 using namespace lanes;
 
-// Lanes first to first + 7: the lobe's frame, the cosine-weighted direction (sample_cosine_hemisphere, through the
-// concentric map), its value and density, Bsdf::sample's checks, and the next ray's origin.
+// Lanes first to first + 7: the lobe's frame, the cosine-weighted direction
+// (sample_cosine_hemisphere, through the concentric map), its value and density, Bsdf::sample's
+// checks, and the next ray's origin.
 [[gnu::always_inline]] inline void eight_lanes(const LaneBounceBatch& batch, int first, LaneBounce* out) {
   using B = LaneBounceBatch;
   const int f = first;

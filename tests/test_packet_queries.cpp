@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
+#include "core/arctangent.h"
 #include "core/pcg32.h"
 #include "core/sobol_sampler.h"
 #include "integrators/lane_spherical_triangle.h"
@@ -387,6 +390,37 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
   EXPECT_GT(bent, 100);
   EXPECT_GT(in_plane, 100);
+}
+
+// lanes::atan2_fast is atan2_fast, bit for bit, in every quadrant and on the axes: signed zeros,
+// infinities, NaNs, equal magnitudes (the reduction's edge) and ratios across tan(pi/8).
+TEST(Lanes, Atan2IsTheScalarOnesBits) {
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> values = {0.0f, -0.0f, inf, -inf, nan, 1.0f, -1.0f, 0.41421356f, 1e-30f, -3e30f, 0x1p-149f};
+  Pcg32 rng(49, 50);
+  for (int k = 0; k < 400; ++k)
+    values.push_back((rng.next_float() - 0.5f) * std::exp2(float(int(rng.next_u32() % 40) - 20)));
+  int compared = 0;
+  for (size_t i = 0; i < values.size(); ++i) {
+    float ys[8], xs[8];
+    for (size_t j = 0; j < values.size(); j += 8) {
+      for (size_t k = 0; k < 8; ++k) {
+        ys[k] = values[i];
+        xs[k] = values[(j + k) % values.size()];
+      }
+      const lanes::F8 got = lanes::atan2_fast(lanes::load(ys, 0), lanes::load(xs, 0));
+      for (int k = 0; k < 8; ++k) {
+        const float expected = atan2_fast(ys[k], xs[k]);
+        if (std::isnan(expected)) {
+          EXPECT_TRUE(std::isnan(got[k])) << ys[k] << ", " << xs[k];
+        } else {
+          ASSERT_EQ(std::bit_cast<uint32_t>(got[k]), std::bit_cast<uint32_t>(expected)) << ys[k] << ", " << xs[k];
+        }
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 150000);
 }
 
 // The lanes' spherical triangles are SphericalTriangle's, bit for bit: solid angles and sampled

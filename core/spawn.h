@@ -48,17 +48,18 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& err, const Vec3& n, con
   return po;
 }
 
-// A ray leaving a surface hit in direction dir.
-inline Ray spawn_ray(const SurfaceHit& from, const Vec3& dir) {
-  return Ray{offset_ray_origin(from.p, from.p_error, from.ng, dir), dir, 0.0f, std::numeric_limits<float>::infinity(),
-             from.triangle};
+// A ray leaving a surface hit in direction dir. origin: offset_ray_origin's for dir, where the
+// caller computed it already (the SIMD lanes, integrators/lane_bounce.h).
+inline Ray spawn_ray(const SurfaceHit& from, const Vec3& dir, const Vec3* origin = nullptr) {
+  return Ray{origin ? *origin : offset_ray_origin(from.p, from.p_error, from.ng, dir), dir, 0.0f,
+             std::numeric_limits<float>::infinity(), from.triangle};
 }
 
 // spawn_ray(from, dir), whose cone goes on from `from`'s width (SurfaceHit::cone_width) with the
 // spread of `arriving`, the ray that found it: as after a mirror, so a rough bounce's footprint is
-// underestimated (textures too sharp there, never too blurred).
-inline Ray spawn_ray_cone(const SurfaceHit& from, const Vec3& dir, const Ray& arriving) {
-  Ray r = spawn_ray(from, dir);
+// underestimated (textures too sharp there, never too blurred). origin: as for spawn_ray.
+inline Ray spawn_ray_cone(const SurfaceHit& from, const Vec3& dir, const Ray& arriving, const Vec3* origin = nullptr) {
+  Ray r = spawn_ray(from, dir, origin);
   r.cone_width = from.cone_width;
   r.cone_spread = arriving.cone_spread;
   return r;

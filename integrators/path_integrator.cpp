@@ -332,14 +332,7 @@ bool PathIntegrator::scatter(Path& path, const SurfaceHit& hit, const BsdfSample
 }
 
 void PathIntegrator::leave_surface(Path& path, const SurfaceHit& hit, const Vec3& wi, const Vec3* origin) {
-  if (origin) {
-    Ray r{*origin, wi, 0.0f, std::numeric_limits<float>::infinity(), hit.triangle};  // as spawn_ray_cone
-    r.cone_width = hit.cone_width;
-    r.cone_spread = path.ray.cone_spread;
-    path.ray = r;
-  } else {
-    path.ray = spawn_ray_cone(hit, wi, path.ray);
-  }
+  path.ray = spawn_ray_cone(hit, wi, path.ray, origin);
   path.segment_start = hit.p;
   ++path.vertices;
 }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -105,12 +106,33 @@ std::string GltfWriter::write(const std::string& dir, const std::string& name, b
   return path;
 }
 
+namespace {
+
+// The directories make_temp_dir made, removed when the test process exits (each test runs in a
+// process of its own) unless PRISM_KEEP_TEST_FILES is set, to look at what a failing test wrote.
+class TempDirs {
+ public:
+  ~TempDirs() {
+    if (std::getenv("PRISM_KEEP_TEST_FILES")) return;
+    std::error_code ignored;
+    for (const std::filesystem::path& dir : dirs_) std::filesystem::remove_all(dir, ignored);
+  }
+  void add(const std::filesystem::path& dir) { dirs_.push_back(dir); }
+
+ private:
+  std::vector<std::filesystem::path> dirs_;
+};
+
+}  // namespace
+
 std::string make_temp_dir(const std::string& tag) {
   static int counter = 0;
+  static TempDirs made;
   const auto dir = std::filesystem::temp_directory_path() /
                    ("prism-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  made.add(dir);
   return dir.string();
 }
 

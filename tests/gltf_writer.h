@@ -34,7 +34,7 @@ class GltfWriter {
   std::vector<uint8_t> bin_;
 };
 
-// A fresh empty directory under the system temp folder.
+// A fresh empty directory under the system temp folder, removed with what it holds when the process exits.
 std::string make_temp_dir(const std::string& tag);
 
 }  // namespace prism::test

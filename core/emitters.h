@@ -140,9 +140,15 @@ class Emitters {
 
   // Emitter index of a triangle of primitive (instance, primitive), or -1 when it emits nothing.
   int triangle_emitter(int instance, int primitive, uint32_t triangle) const {
-    if (prim_triangle_base_.empty()) return -1;
+    const int* emitters = triangle_emitters(instance, primitive);
+    return emitters ? emitters[triangle] : -1;
+  }
+  // Primitive (instance, primitive)'s emitter index per triangle (-1: emits nothing), or null when
+  // none of its triangles emits.
+  const int* triangle_emitters(int instance, int primitive) const {
+    if (prim_triangle_base_.empty()) return nullptr;
     const int base = prim_triangle_base_[size_t(instance_prim_base_[size_t(instance)] + primitive)];
-    return base >= 0 ? triangle_emitter_[size_t(base) + triangle] : -1;
+    return base >= 0 ? &triangle_emitter_[size_t(base)] : nullptr;
   }
   // Emitter index of sphere `s`, or -1.
   int sphere_emitter(int s) const { return sphere_emitter_[s]; }

@@ -192,7 +192,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
         attach_alpha_filter(geom, inst.mesh, static_cast<int>(p));
         rtcCommitGeometry(geom);
         attach_top(geom, {static_cast<int>(i), static_cast<int>(p), face_normals(prims[p]),
-                          desc_.material(prims[p].material).is_thin_sheet()});
+                          desc_.material(prims[p].material).is_thin_sheet(), {}});
       }
       continue;
     }
@@ -215,7 +215,7 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
     const std::array<float, 12> m = inst.object_to_world.matrix_float();
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
     rtcCommitGeometry(geom);
-    attach_top(geom, {static_cast<int>(i), -1, {}});
+    attach_top(geom, {static_cast<int>(i), -1, {}, false, {}});
   }
   for (const SphereDesc& sphere : desc_.spheres)
     if (desc_.material(sphere.material).is_thin_sheet()) sees_every_sheet_ = false;
@@ -231,6 +231,8 @@ Scene::Scene(SceneDesc desc, AlphaFunction alpha, LightSampling lights) : desc_(
   tsan_acquire(&sphere_geometry_);  // the build threads' sphere_bounds calls are over
   throw_on_embree_error("building the scene of " + desc_.source);
   emitters_ = Emitters(desc_, lights);
+  for (TopGeometry& g : top_geometries_)
+    if (g.primitive >= 0) g.baked = hit_primitive(g.instance, g.primitive, g.face_normals.data());
   casters_ = CausticCasters(desc_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -435,35 +437,46 @@ bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) co
   hit.t = rh.ray.tfar;
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     // An instanced mesh: Embree's geomID is the primitive within the mesh.
-    reconstruct_triangle_hit(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID), nullptr, rh,
-                             hit);
+    reconstruct_triangle_hit(hit_primitive(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID),
+                                           nullptr),
+                             rh, hit);
   } else if (rh.hit.geomID == sphere_geom_id_) {
     reconstruct_sphere_hit(ray, rh, hit);
   } else {
-    const TopGeometry& g = top_geometries_[rh.hit.geomID];
-    reconstruct_triangle_hit(g.instance, g.primitive, g.face_normals.data(), rh, hit);
+    reconstruct_triangle_hit(top_geometries_[rh.hit.geomID].baked, rh, hit);
   }
   return true;
 }
 
-void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* face_normals, const RTCRayHit& rh,
-                                     SurfaceHit& hit) const {
+Scene::HitPrimitive Scene::hit_primitive(int instance, int primitive, const Vec3* face_normals) const {
   const InstanceDesc& inst = desc_.instances[instance];
-  const PrimitiveDesc& prim = desc_.meshes[inst.mesh].primitives[primitive];
-  const Transform& xf = inst.object_to_world;
-  const bool world_space = xf.is_identity();  // baked meshes need no transform
+  HitPrimitive h;
+  h.prim = &desc_.meshes[inst.mesh].primitives[primitive];
+  h.material = &desc_.material(h.prim->material);
+  h.object_to_world = inst.object_to_world.is_identity() ? nullptr : &inst.object_to_world;
+  h.face_normals = face_normals;
+  h.emitters = emitters_.triangle_emitters(instance, primitive);
+  h.instance = instance;
+  return h;
+}
+
+void Scene::reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit& rh, SurfaceHit& hit) const {
+  const PrimitiveDesc& prim = *source.prim;
+  const Transform* xf = source.object_to_world;
+  const bool world_space = !xf;  // baked meshes need no transform
+  const float handedness = xf && xf->flips_handedness() ? -1.0f : 1.0f;
+  const Vec3* face_normals = source.face_normals;
   const uint32_t* idx = &prim.indices[3 * size_t(rh.hit.primID)];
   const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
 
-  const Vec3 p0 = world_space ? prim.positions[idx[0]] : xf.point(prim.positions[idx[0]]);
-  const Vec3 p1 = world_space ? prim.positions[idx[1]] : xf.point(prim.positions[idx[1]]);
-  const Vec3 p2 = world_space ? prim.positions[idx[2]] : xf.point(prim.positions[idx[2]]);
+  const Vec3 p0 = world_space ? prim.positions[idx[0]] : xf->point(prim.positions[idx[0]]);
+  const Vec3 p1 = world_space ? prim.positions[idx[1]] : xf->point(prim.positions[idx[1]]);
+  const Vec3 p2 = world_space ? prim.positions[idx[2]] : xf->point(prim.positions[idx[2]]);
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
   hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
 
   // glTF 2.0 §3.7.4: a negative determinant makes the front face clockwise.
-  const Vec3 ng = face_normals ? face_normals[rh.hit.primID]
-                               : face_normal(p0, p1, p2).normal * (xf.flips_handedness() ? -1.0f : 1.0f);
+  const Vec3 ng = face_normals ? face_normals[rh.hit.primID] : face_normal(p0, p1, p2).normal * handedness;
   if (ng != Vec3(0.0f)) {
     hit.ng = ng;
   } else {
@@ -474,7 +487,7 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
   hit.ns = hit.ng;
   if (!prim.normals.empty()) {
     const Vec3 n = prim.normals[idx[0]] * b0 + prim.normals[idx[1]] * b1 + prim.normals[idx[2]] * b2;
-    const Vec3 nw = world_space ? n : xf.normal(n);
+    const Vec3 nw = world_space ? n : xf->normal(n);
     const float nlen = length(nw);
     if (nlen > 0 && std::isfinite(nlen)) hit.ns = nw / nlen;
   }
@@ -486,7 +499,7 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
   if (!prim.uvs.empty()) {
     const Vec2 &t0 = prim.uvs[idx[0]], &t1 = prim.uvs[idx[1]], &t2 = prim.uvs[idx[2]];
     hit.uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
-    const MaterialDesc& material = desc_.material(prim.material);
+    const MaterialDesc& material = *source.material;
     if (features_.mip_levels && material.has_textures()) {
       // Twice the triangle's area in uv and in space (Akenine-Moller et al. 2019, "Texture level
       // of detail strategies for real-time ray tracing", eq. 3: the texel-to-area ratio).
@@ -501,8 +514,8 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
       // A mirroring transform reverses the frame's handedness (bitangents map by M, but
       // cross(M^-T n, M t) flips with det M).
       const Vec3 t = prim.tangents[idx[0]] * b0 + prim.tangents[idx[1]] * b1 + prim.tangents[idx[2]] * b2;
-      hit.tangent = world_space ? t : xf.vector(t);
-      hit.tangent_sign = prim.tangent_signs[idx[0]] * (xf.flips_handedness() ? -1.0f : 1.0f);
+      hit.tangent = world_space ? t : xf->vector(t);
+      hit.tangent_sign = prim.tangent_signs[idx[0]] * handedness;
     } else if (wants_frame) {
       // No per-vertex frames: the triangle's own (already in world space).
       const TangentFrame f = triangle_tangent_frame(p0, p1, p2, t0, t1, t2);
@@ -517,9 +530,9 @@ void Scene::reconstruct_triangle_hit(int instance, int primitive, const Vec3* fa
     }
   }
   hit.material = prim.material;
-  hit.object = instance;
+  hit.object = source.instance;
   hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
-  hit.emitter = emitters_.triangle_emitter(instance, primitive, rh.hit.primID);
+  hit.emitter = source.emitters ? source.emitters[rh.hit.primID] : -1;
 }
 
 void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {

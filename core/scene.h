@@ -86,6 +86,16 @@ class Scene {
   uint64_t triangle_count() const;
 
  private:
+  // A triangle primitive in its placement, with what reconstruct_triangle_hit reads of it looked up.
+  struct HitPrimitive {
+    const PrimitiveDesc* prim = nullptr;
+    const MaterialDesc* material = nullptr;
+    const Transform* object_to_world = nullptr;  // null: the primitive is in world space (baked)
+    const Vec3* face_normals = nullptr;  // its triangles' unit world-space face normals, or null to compute
+    const int* emitters = nullptr;       // Emitters::triangle_emitters, or null: no triangle emits
+    int instance = -1;
+  };
+
   // What a top-level geometry id stands for.
   struct TopGeometry {
     int instance = -1;   // the placement (instances and baked meshes)
@@ -93,6 +103,8 @@ class Scene {
     // Baked meshes: each triangle's face_normal, computed once (double precision is dear per hit).
     std::vector<Vec3> face_normals;
     bool sheet = false;  // baked meshes: the primitive's material is a thin sheet
+    // Baked meshes: the primitive as hits on it read it, looked up once, when the scene is built.
+    HitPrimitive baked;
   };
 
   // What an alpha filter needs to know about the primitive it guards.
@@ -122,9 +134,9 @@ class Scene {
   void occluded8(const Ray* rays, int n, bool* occluded) const;
   // The same under a given intersection context (its filter decides what blocks).
   void occluded8(const Ray* rays, int n, bool* occluded, RTCIntersectContext* context) const;
-  // face_normals: the primitive's precomputed unit normals (world space), or null to compute them.
-  void reconstruct_triangle_hit(int instance, int primitive, const Vec3* face_normals, const RTCRayHit& rh,
-                                SurfaceHit& hit) const;
+  // Primitive `primitive` of instance `instance`, looked up; face_normals as in HitPrimitive.
+  HitPrimitive hit_primitive(int instance, int primitive, const Vec3* face_normals) const;
+  void reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit& rh, SurfaceHit& hit) const;
   void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
 
   SceneDesc desc_;

@@ -106,9 +106,9 @@ class Emitters {
   };
 
   // A draw sample_light would make on an untextured triangle or quad, for next-event estimation in
-  // SIMD lanes (integrators/lane_direct_light.h), which finishes the sample bit for bit as
-  // sample_light does: by solid angle where `near` and the solid angle pays (SolidAngleView), else
-  // the point by area.
+  // SIMD lanes (lanes::direct_light, integrators/lane_direct_light.h), which finishes the sample bit
+  // for bit as sample_light does: by solid angle where `near` and the solid angle pays
+  // (SolidAngleView), else the point by area.
   struct TriangleDraw {
     const Emitter* light = nullptr;
     Vec2 u;           // the point's draw (u.x rescaled, point_draw)

@@ -16,7 +16,7 @@ struct SinCos {
   float sin, cos;
 };
 // The polynomials for one angle (T float) or for eight lanes' (T a vector of floats, as
-// integrators/lane_bounce.cpp takes it): each float constant stands for its value in every lane,
+// integrators/lane_bounce.h takes it): each float constant stands for its value in every lane,
 // so every lane gets the bits the float form gives.
 template <class T>
 [[gnu::always_inline]] inline void sin_cos_quarter_of(T a, T& s, T& c) {

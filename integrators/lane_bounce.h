@@ -1,23 +1,15 @@
-// LaneBounceBatch, lane_bounce: the Lambertian lobe's cosine-weighted bounce and the next ray's origin, in SIMD lanes.
+// LaneBounce, lanes::bounce: a Lambertian vertex's bounce drawn in lanes.
 #pragma once
 
+#include <iterator>
+
+#include "core/constants.h"
+#include "core/sampling.h"
 #include "core/vec3.h"
 #include "integrators/lane_lambertian_lobe.h"
+#include "integrators/lane_math.h"
 
 namespace prism {
-
-// A bounce request's fields; rows of three hold a vector's x, y and z.
-struct LaneBounceFields : LambertianSurfaceFields {
-  enum Row { kUx = kSurfaceRows, kUy, kRows };
-};
-
-// Up to kLanes Lambertian vertices' bounces.
-class LaneBounceBatch : public LaneBounceFields, public LambertianLaneRows<LaneBounceFields::kRows> {
- public:
-  // A vertex: its surface, its point and the point's error bound, and its direction draw. Returns
-  // its lane. At most kLanes.
-  int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, Vec2 u);
-};
 
 // What Bsdf::sample gives for the vertex's Lambertian lobe (sampled false where it gives nothing),
 // and the origin spawn_ray would give the ray leaving the hit along wi.
@@ -28,8 +20,51 @@ struct LaneBounce {
   bool sampled = false;
 };
 
-// Each lane's bounce, bit for bit what Bsdf::sample and spawn_ray make of it. In AVX2 where the CPU
-// has it and `avx2` allows it, else in SSE pairs (the same bits).
-void lane_bounce(const LaneBounceBatch& batch, LaneBounce* out, bool avx2 = true);
+namespace lanes {
 
+// For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it
+// (kWantsBounce), bit for bit what Bsdf::sample and spawn_ray make of the bounce: the
+// cosine-weighted direction (sample_cosine_hemisphere, through the concentric map), its value and
+// density, Bsdf::sample's checks, and the next ray's origin.
+template <class B>
+[[gnu::always_inline]] inline void bounce(const B& batch, int first, const Lobe& lobe, LaneBounce* out) {
+  const int f = first;
+  const V8 ng = rows(batch, B::kNg, f), p = rows(batch, B::kP, f), p_error = rows(batch, B::kPError, f);
+  const V8 albedo_f = rows(batch, B::kF, f);
+  const F8 ux = row(batch, B::kBounceUx, f), uy = row(batch, B::kBounceUy, f);
+  // sample_uniform_disk_concentric: the wedge pair u falls in, the angle's sine and cosine.
+  const F8 ox = splat(2.0f) * ux - splat(1.0f), oy = splat(2.0f) * uy - splat(1.0f);
+  const M8 centre = (ox == 0) & (oy == 0);
+  const M8 x_major = absolute(ox) > absolute(oy);
+  const F8 r = pick(x_major, ox, oy);
+  F8 sine, cosine;
+  sin_cos_quarter_of(splat(kPiOver4) * (pick(x_major, oy, ox) / r), sine, cosine);
+  const F8 dx = pick(centre, splat(0.0f), pick(x_major, r * cosine, r * sine));
+  const F8 dy = pick(centre, splat(0.0f), pick(x_major, r * sine, r * cosine));
+  const F8 below = splat(1.0f) - dx * dx - dy * dy;
+  const F8 z = root(pick(splat(0.0f) < below, below, splat(0.0f)));
+  // Frame::to_world, Lambertian's f |cos| and density, and Bsdf::consistent.
+  const V8 wi = add(add(mul(lobe.s, dx), mul(lobe.t, dy)), mul(lobe.n, z));
+  const F8 pdf = pick(z < 0, splat(0.0f), z) * splat(kInvPi);
+  const V8 f_cos = mul(albedo_f, absolute(z));
+  const M8 sampled = (row(batch, B::kWantsBounce, f) != 0) & lobe.valid & (pdf > 0) &
+                     consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & any_nonzero(f_cos);
+  // spawn_ray's origin.
+  const V8 origin = offset_ray_origin(p, p_error, ng, wi);
+  const F8 fields[] = {wi.x, wi.y, wi.z, origin.x, origin.y, origin.z, f_cos.x, f_cos.y, f_cos.z, pdf};
+  alignas(32) float o[std::size(fields)][kLanes];
+  bool sampled_k[kLanes];
+  const int lanes = unpack(fields, sampled, batch.size() - first, o, sampled_k);
+  for (int k = 0; k < lanes; ++k) {
+    LaneBounce& b = out[first + k];
+    b.sampled = sampled_k[k];
+    if (!b.sampled) continue;
+    b.wi = {o[0][k], o[1][k], o[2][k]};
+    b.origin = {o[3][k], o[4][k], o[5][k]};
+    b.f_cos = {o[6][k], o[7][k], o[8][k]};
+    b.pdf = o[9][k];
+  }
+}
+
+}  // namespace lanes
 }  // namespace prism

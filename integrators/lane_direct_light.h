@@ -1,35 +1,16 @@
-// LaneLightBatch, lane_direct_light: next-event estimation at Lambertian vertices toward area-drawn points, in lanes.
+// LaneLightResult, lanes::direct_light: next-event estimation at Lambertian vertices toward area-drawn points, in lanes.
 #pragma once
 
+#include <limits>
+
+#include "core/constants.h"
 #include "core/emitters.h"
 #include "core/ray.h"
-#include "core/vec3.h"
 #include "integrators/lane_lambertian_lobe.h"
+#include "integrators/lane_math.h"
+#include "integrators/lane_spherical_triangle.h"
 
 namespace prism {
-
-// A light request's fields; rows of three hold a vector's x, y and z.
-struct LaneLightFields : LambertianSurfaceFields {
-  enum Row {
-    kBeta = kSurfaceRows, kP0 = kBeta + 3, kP1 = kP0 + 3, kP2 = kP1 + 3, kP3 = kP2 + 3, kLightN = kP3 + 3,
-    kEmission = kLightN + 3,  // the rows of three above, one each below
-    kUx = kEmission + 3, kUy, kNear, kQuad, kHalf, kB0, kB1, kB2, kSlack, kPdfArea, kPmf, kDoubleSided, kRows
-  };
-};
-
-// Up to kLanes vertices' light requests. Outside every volume only: no medium absorbs.
-class LaneLightBatch : public LaneLightFields, public LambertianLaneRows<LaneLightFields::kRows> {
- public:
-  // A vertex: its surface, its hit's point, the point's error bound and triangle, and the path's
-  // throughput, with the light point drawn for it (Emitters::triangle_draw) and that light's emitted
-  // radiance (0 where it emits nothing) and sidedness. Returns its lane. At most kLanes.
-  int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, TriangleId leaves, const Rgb& beta,
-          const Emitters::TriangleDraw& light, const Rgb& emission, bool double_sided);
-  TriangleId leaves(int lane) const { return leaves_[lane]; }
-
- private:
-  TriangleId leaves_[kLanes];
-};
 
 // The shadow ray to trace and what it adds when unoccluded (beta included); cast false: none.
 struct LaneLightResult {
@@ -38,11 +19,96 @@ struct LaneLightResult {
   bool cast = false;
 };
 
-// For each lane of the batch, what PathIntegrator::direct_light gives, bit for bit: the light
-// sample's point, error bound and density (Emitters::sample_light: by solid angle near the light
-// where that pays, else by area), the emitted radiance, the lobe's value and density
-// (Bsdf::evaluate), the shadow ray (spawn_ray_between) and the power-heuristic weight. In AVX2
-// where the CPU has it and `avx2` allows it, else in SSE pairs (the same bits).
-void lane_direct_light(const LaneLightBatch& batch, LaneLightResult* out, bool avx2 = true);
+namespace lanes {
 
+// For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it (kWantsLight),
+// what PathIntegrator::direct_light gives, bit for bit: the light sample's point, error bound and
+// density (Emitters::sample_light: by solid angle near the light where that pays, else by area),
+// the emitted radiance, the lobe's value and density (Bsdf::evaluate), the shadow ray
+// (spawn_ray_between) and the power-heuristic weight. Outside every volume only: no medium absorbs.
+template <class B>
+[[gnu::always_inline]] inline void direct_light(const B& batch, int first, const Lobe& lobe, LaneLightResult* out) {
+  const int f = first;
+  const struct {
+    V8 p, p_error, f, beta, p0, p1, p2, p3, light_n, emission;
+    F8 ux, uy, near, quad, half, b0, b1, b2, quad_slack, pdf_area, pmf, double_sided, wants;
+  } l{rows(batch, B::kP, f),       rows(batch, B::kPError, f),    rows(batch, B::kF, f),       rows(batch, B::kBeta, f),
+      rows(batch, B::kP0, f),      rows(batch, B::kP1, f),        rows(batch, B::kP2, f),      rows(batch, B::kP3, f),
+      rows(batch, B::kLightN, f),  rows(batch, B::kEmission, f),  row(batch, B::kLightUx, f),  row(batch, B::kLightUy, f),
+      row(batch, B::kNear, f),     row(batch, B::kQuad, f),       row(batch, B::kHalf, f),     row(batch, B::kB0, f),
+      row(batch, B::kB1, f),       row(batch, B::kB2, f),         row(batch, B::kSlack, f),    row(batch, B::kPdfArea, f),
+      row(batch, B::kPmf, f),      row(batch, B::kDoubleSided, f), row(batch, B::kWantsLight, f)};
+  // Emitters::sample_triangle: by solid angle where the vertex is near the light and that pays
+  // (SolidAngleView), u.x choosing a quad's half in proportion to its share and rescaled within it.
+  const M8 wants = l.wants != 0;
+  M8 by_solid_angle = wants & (l.near != 0), in_b{};
+  F8 solid_angle = splat(0.0f);
+  Barycentrics8 at{l.b0, l.b1, l.b2, ~M8{}};  // by area, every lane drawn
+  if (any(by_solid_angle)) {
+    const M8 quad = l.quad != 0;
+    const Corner8 c0 = see(l.p, l.p0), c1 = see(l.p, l.p1), c2 = see(l.p, l.p2);
+    const SphericalTriangle8 a = spherical_triangle(l.p, c0, c1, c2);
+    const SphericalTriangle8 b = spherical_triangle(l.p, c1, see(l.p, l.p3), c2);
+    solid_angle = a.solid_angle + pick(quad, b.solid_angle, splat(0.0f));
+    by_solid_angle &= (solid_angle >= Emitters::kMinSolidAngle) & (solid_angle <= Emitters::kMaxSolidAngle);
+    const F8 share_a = a.solid_angle / solid_angle;
+    in_b = quad & (l.ux >= share_a);
+    const F8 ux = pick(quad, minimum(pick(in_b, (l.ux - share_a) / (splat(1.0f) - share_a), l.ux / share_a),
+                                     splat(kOneMinusEpsilon)),
+                       l.ux);
+    const Barycentrics8 s = sample(pick(in_b, b, a), ux, l.uy);
+    at = {pick(by_solid_angle, s.b0, l.b0), pick(by_solid_angle, s.b1, l.b1), pick(by_solid_angle, s.b2, l.b2),
+          ~by_solid_angle | s.drawn};
+  }
+  // Emitters::triangle_point at those barycentrics of the half they are in.
+  const M8 half_b = pick(by_solid_angle, in_b, l.half != 0);
+  const V8 c0 = pick(half_b, l.p1, l.p0), c1 = pick(half_b, l.p3, l.p1), c2 = l.p2;
+  const V8 w0 = mul(c0, at.b0), w1 = mul(c1, at.b1), w2 = mul(c2, at.b2);
+  const V8 lp = add(add(w0, w1), w2);
+  const F8 rel = splat(kHitRelativeError);
+  const V8 slack{l.quad_slack, l.quad_slack, l.quad_slack};
+  const V8 lp_error = add(mul(add(add(absolute(w0), absolute(w1)), absolute(w2)), rel), slack);
+  const V8 to_light = sub(lp, l.p);
+  const F8 dist2 = dot(to_light, to_light);
+  const F8 dist = root(dist2);
+  const F8 cos_p = absolute(dot(l.light_n, to_light)) / dist;
+  // The density: 1 / solid angle, or area_to_solid_angle's; then the light's pick probability.
+  const F8 pdf =
+      pick(by_solid_angle, splat(1.0f) / solid_angle, pick(cos_p > 0, l.pdf_area * dist2 / cos_p, splat(0.0f))) * l.pmf;
+  // direct_light: the direction, the radiance leaving the light toward the vertex.
+  const V8 wi = mul(to_light, splat(1.0f) / dist);
+  const V8 back{-wi.x, -wi.y, -wi.z};
+  const M8 emits = (l.double_sided != 0) | ~(dot(l.light_n, back) <= 0);
+  const V8 incident = pick(emits, l.emission, V8{});
+  // Bsdf::evaluate for the Lambertian lobe alone: consistent(), then f |cos| and the cosine density.
+  const F8 z = dot(wi, lobe.n);
+  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
+  const V8 f_cos = pick(above, mul(l.f, absolute(z)), V8{});
+  const F8 bsdf_pdf = pick(above, z * splat(kInvPi), splat(0.0f));
+  const M8 cast = wants & at.drawn & (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
+  // spawn_ray_between: each end offset off its own surface toward the other.
+  const V8 origin = offset_ray_origin(l.p, l.p_error, rows(batch, B::kNg, f), to_light);
+  const V8 to = offset_ray_origin(lp, lp_error, l.light_n, sub(origin, lp));
+  const V8 dir = sub(to, origin);
+  // power_heuristic(pdf, bsdf_pdf), and the contribution with beta (beer_lambert is 1 here).
+  const F8 a = pdf * pdf, b = bsdf_pdf * bsdf_pdf;
+  const F8 sum = a + b;
+  const F8 weight = pick(a == splat(std::numeric_limits<float>::infinity()), splat(1.0f),
+                         pick(sum > 0, a / sum, splat(0.0f)));
+  const V8 contribution = mul(l.beta, mul(mul(f_cos, incident), weight / pdf));
+  const F8 fields[] = {origin.x, origin.y, origin.z, dir.x, dir.y, dir.z, contribution.x, contribution.y, contribution.z};
+  alignas(32) float o[std::size(fields)][kLanes];
+  bool cast_k[kLanes];
+  const int lanes = unpack(fields, cast, batch.size() - first, o, cast_k);
+  for (int k = 0; k < lanes; ++k) {
+    LaneLightResult& r = out[first + k];
+    r.cast = cast_k[k];
+    if (!r.cast) continue;
+    r.ray = Ray{{o[0][k], o[1][k], o[2][k]}, {o[3][k], o[4][k], o[5][k]}, 0.0f, 1.0f - kShadowEpsilon,
+                batch.leaves(first + k)};
+    r.contribution = {o[6][k], o[7][k], o[8][k]};
+  }
+}
+
+}  // namespace lanes
 }  // namespace prism

@@ -1,6 +1,8 @@
 // lanes: eight-lane arithmetic for the path tracer's SIMD kernels, each operation rounding as its scalar form does.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -105,6 +107,19 @@ struct V8 {
   const F8 geometric = dot(wi, ng) * wo_dot_ng;
   const F8 shading = z * wo_z;
   return (geometric != 0) & (shading != 0) & ((geometric > 0) == (shading > 0));
+}
+
+// A kernel's results, lane by lane: lane k of fields[i] into o[i][k] and of `mask` into set[k], for
+// the first `count` lanes (at most kLanes, the lanes in use). Returns how many.
+template <size_t N>
+[[gnu::always_inline]] inline int unpack(const F8 (&fields)[N], M8 mask, int count, float (&o)[N][kLanes],
+                                         bool (&set)[kLanes]) {
+  alignas(32) int32_t m[kLanes];
+  for (size_t i = 0; i < N; ++i) std::memcpy(o[i], &fields[i], sizeof(F8));
+  std::memcpy(m, &mask, sizeof(M8));
+  const int lanes = count < kLanes ? count : kLanes;
+  for (int k = 0; k < lanes; ++k) set[k] = m[k] != 0;
+  return lanes;
 }
 
 // Lanes first to first + 7 of a row of floats.

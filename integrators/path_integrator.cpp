@@ -45,7 +45,7 @@ struct PathIntegrator::ShadowQuery {
   Ray ray;
   Rgb contribution;
   bool cast = false;      // false: there is no shadow ray to trace
-  bool queued = false;    // the query waits for lane_direct_light, which sets ray, contribution and cast
+  bool queued = false;    // the query waits for lane_vertices, which sets ray, contribution and cast
   Rgb* target = nullptr;
   float medium_ior = 1;  // of the medium the ray travels in, for the sheets it may cross
 };
@@ -142,11 +142,11 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const LambertianSurface& surface,
-                                        const Bounce& bounce, const Path& path, const MaterialDesc& material,
-                                        const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
-                                        LaneLightBatch& lanes) const {
-  // lane_direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
+bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bounce& bounce,
+                                        const Path& path, const MaterialDesc& material, const VertexSamples& u,
+                                        const Arrival& at, ShadowQuery& shadow, LaneVertexBatch& lanes,
+                                        int lane) const {
+  // lanes::direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
   // surface (beer_lambert is 1).
   if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
   Emitters::TriangleDraw draw;
@@ -156,8 +156,8 @@ bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hi
     case Emitters::Draw::kOnTriangle: break;
   }
   const MaterialDesc& light = scene.desc().material(draw.light->material);
-  lanes.add(surface, hit.p, hit.p_error, hit.triangle, path.beta, draw,
-            light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
+  lanes.request_light(lane, hit.triangle, path.beta, draw,
+                      light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
   return true;
@@ -174,7 +174,7 @@ bool PathIntegrator::scatters_next(const Path& path) const {
 // stratified across them (pbrt-v4 does the same). li_packet draws them (at.draws) before the lanes
 // shade.
 PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
-                                             RayCounters& counters, Lanes* lanes) const {
+                                             RayCounters& counters, LaneVertexBatch* lanes) const {
   const SurfaceHit* found = at.hit;
   const Vec2* sky_uv = at.sky_uv;
   const SceneDesc& desc = scene.desc();
@@ -249,21 +249,21 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   const Vec3 ns = shading_normal(desc, material, hit);
   // The Lambertian lobe alone is the lanes' case: they make its frame themselves, and its Bsdf is
   // built only where the scalar code below needs it (casters that may aim the bounce, a light
-  // sample lane_direct_light does not take).
+  // sample the lanes do not take).
   const bool in_lanes = lanes && Bsdf::lambertian_only(params, eta);
   std::optional<Bsdf> built;
   const auto bsdf = [&]() -> const Bsdf& {
     if (!built) built.emplace(params, ns, hit.ng, wo, eta);
     return *built;
   };
-  const LambertianSurface surface{ns, hit.ng, wo, in_lanes ? Lambertian{params.base_color}.f() : Rgb(0.0f)};
+  const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error) : -1;
 
   Bounce bounce;
   if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) choose_bounce(scene, hit, bsdf(), bounce);
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
-    if (!(in_lanes && queue_direct_light(scene, hit, surface, bounce, path, material, u, at, shadow, lanes->lights))) {
+    if (!(in_lanes && queue_direct_light(scene, hit, bounce, path, material, u, at, shadow, *lanes, lane))) {
       shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light);
       if (shadow.cast) {
         ++counters.shadow;
@@ -273,10 +273,10 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
-  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes (lane_bounce); li_packet
-  // then finishes it with scatter().
+  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes; li_packet then finishes it
+  // with scatter().
   if (in_lanes && !(bounce.share > 0)) {
-    lanes->bounces.add(surface, hit.p, hit.p_error, u.direction);
+    lanes->request_bounce(lane, u.direction);
     return Step::kInLanes;
   }
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
@@ -403,11 +403,11 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   float shadow_iors[kLanes];
   Rgb through[kLanes];
   int shadow_lane[kLanes];
-  static_assert(LaneLightBatch::kLanes >= kLanes && LaneBounceBatch::kLanes >= kLanes);
-  Lanes lanes;
+  static_assert(LaneVertexBatch::kLanes >= kLanes);
+  LaneVertexBatch lanes;
   LaneLightResult light_results[kLanes];
   LaneBounce bounce_results[kLanes];
-  int light_lane[kLanes], bounce_lane[kLanes];
+  int vertex_lane[kLanes];  // the path lane of each of the batch's lanes
   Step step[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
   const std::optional<Emitters::Pick>* light[kLanes] = {};
@@ -473,8 +473,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       for (int j = 0; j < picks; ++j) light[pick_lane[j]] = &picked[j];
     }
 
-    lanes.lights.clear();
-    lanes.bounces.clear();
+    lanes.clear();
     for (int i = 0; i < m; ++i) {
       Arrival at;
       if (found[i]) {
@@ -485,26 +484,24 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       } else if (sky.has_map()) {
         at.sky_uv = &sky_uv[i];
       }
+      const int before = lanes.size();
       step[i] = advance(scene, paths[live[i]], at, shadows[i], counters, lanes_ ? &lanes : nullptr);
-      if (shadows[i].queued) light_lane[lanes.lights.size() - 1] = i;
-      if (step[i] == Step::kInLanes) bounce_lane[lanes.bounces.size() - 1] = i;
+      if (lanes.size() > before) vertex_lane[before] = i;
     }
     // The Lambertian vertices' light samples and bounces, in SIMD lanes.
-    if (lanes.lights.size() > 0) {
-      lane_direct_light(lanes.lights, light_results);
-      for (int j = 0; j < lanes.lights.size(); ++j) {
-        ShadowQuery& q = shadows[light_lane[j]];
+    lane_vertices(lanes, light_results, bounce_results);
+    for (int j = 0; j < lanes.size(); ++j) {
+      const int i = vertex_lane[j];
+      if (shadows[i].queued) {
+        ShadowQuery& q = shadows[i];
         q.cast = light_results[j].cast;
-        if (!q.cast) continue;
-        q.ray = light_results[j].ray;
-        q.contribution = light_results[j].contribution;
-        ++counters.shadow;
+        if (q.cast) {
+          q.ray = light_results[j].ray;
+          q.contribution = light_results[j].contribution;
+          ++counters.shadow;
+        }
       }
-    }
-    if (lanes.bounces.size() > 0) {
-      lane_bounce(lanes.bounces, bounce_results);
-      for (int j = 0; j < lanes.bounces.size(); ++j) {
-        const int i = bounce_lane[j];
+      if (step[i] == Step::kInLanes) {
         const LaneBounce& b = bounce_results[j];
         BsdfSample bs;
         bs.wi = b.wi;

@@ -2,8 +2,7 @@
 #pragma once
 
 #include "core/integrator.h"
-#include "integrators/lane_bounce.h"
-#include "integrators/lane_direct_light.h"
+#include "integrators/lane_vertices.h"
 #include "integrators/medium_stack.h"
 #include "materials/bsdf.h"
 
@@ -32,10 +31,9 @@ class PathIntegrator final : public Integrator {
   // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
-  // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes: next-event
-  // estimation toward untextured triangles and quads (lane_direct_light) and the bounce
-  // (lane_bounce). On by default; either way the images are the same bits, so off serves tests
-  // and measurements.
+  // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes (lane_vertices):
+  // next-event estimation toward untextured triangles and quads, and the bounce. On by default;
+  // either way the images are the same bits, so off serves tests and measurements.
   void set_lanes(bool on) { lanes_ = on; }
 
  private:
@@ -49,29 +47,25 @@ class PathIntegrator final : public Integrator {
   // One bounce of a path where its ray arrived (a surface or the sky): gathers emission, queues
   // the next-event estimation's shadow ray in `shadow`, samples the next direction. False when
   // the path ends here.
-  // What advance leaves a path to: it ends, it goes on, or it waits for lane_bounce to draw its
+  // What advance leaves a path to: it ends, it goes on, or it waits for lane_vertices to draw its
   // bounce (li_packet then finishes it with scatter).
   enum class Step { kEnds, kGoesOn, kInLanes };
-  // The work advance may hand to SIMD kernels instead of doing it lane by lane.
-  struct Lanes {
-    LaneLightBatch lights;
-    LaneBounceBatch bounces;
-  };
-  // lanes: where next-event estimation may go to lane_direct_light instead of direct_light
-  // (ShadowQuery::queued), and a Lambertian bounce to lane_bounce (Step::kInLanes); null: neither.
+  // lanes: where a Lambertian vertex takes a lane of it (the last one added), from which its
+  // next-event estimation (ShadowQuery::queued) and its bounce (Step::kInLanes) may be asked
+  // instead of direct_light and Bsdf::sample; null: neither.
   Step advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
-               Lanes* lanes = nullptr) const;
+               LaneVertexBatch* lanes = nullptr) const;
   // The rest of a bounce once its direction is drawn (bs): the throughput, the path's record of the
-  // vertex, the next ray (from `origin` where lane_bounce offset it already) and Russian roulette.
+  // vertex, the next ray (from `origin` where lane_vertices offset it already) and Russian roulette.
   // False when the path ends.
   bool scatter(Path& path, const SurfaceHit& hit, const BsdfSample& bs, const MaterialDesc& material, bool from_front,
                float u_roulette, RayCounters& counters, const Vec3* origin = nullptr) const;
-  // Next-event estimation by lane_direct_light at a vertex with a Lambertian lobe, where the vertex
-  // and its light draw allow it: adds a lane to `lanes` (true, shadow.queued) or finds there is no
-  // light to sample (true); false: direct_light's case.
-  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const LambertianSurface& surface,
-                          const Bounce& bounce, const Path& path, const MaterialDesc& material,
-                          const VertexSamples& u, const Arrival& at, ShadowQuery& shadow, LaneLightBatch& lanes) const;
+  // Next-event estimation in lane `lane` of `lanes` (lane_vertices) at a vertex with a Lambertian
+  // lobe, where the vertex and its light draw allow it: asks the lane for it (true, shadow.queued)
+  // or finds there is no light to sample (true); false: direct_light's case.
+  bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bounce& bounce, const Path& path,
+                          const MaterialDesc& material, const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
+                          LaneVertexBatch& lanes, int lane) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
   // sky, light: the light sample's sky direction and the light, when the caller drew them

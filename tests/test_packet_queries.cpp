@@ -152,7 +152,7 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
   EXPECT_GT(packed_counters.extension, 1000u);
 }
 
-// The same paths with part of their vertices' work in SIMD lanes (lane_direct_light, lane_bounce)
+// The same paths with part of their vertices' work in SIMD lanes (lane_vertices)
 // and without: the same bits, lane by lane, and the same rays counted. Returns how many shadow rays
 // were cast.
 uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200) {
@@ -262,11 +262,11 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
   };
   int compared = 0;
   for (int round = 0; round < 2000; ++round) {
-    const int n = 1 + round % LaneLightBatch::kLanes;
-    LaneLightBatch batch;
-    Emitters::Emitter light[LaneLightBatch::kLanes];
-    Emitters::TriangleDraw draw[LaneLightBatch::kLanes];
-    SurfaceHit from[LaneLightBatch::kLanes];
+    const int n = 1 + round % LaneVertexBatch::kLanes;
+    LaneVertexBatch batch;
+    Emitters::Emitter light[LaneVertexBatch::kLanes];
+    Emitters::TriangleDraw draw[LaneVertexBatch::kLanes];
+    SurfaceHit from[LaneVertexBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       from[k].p = point();
       from[k].p_error = abs(point()) * 1e-6f;
@@ -284,12 +284,13 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       // A surface that sees the light: its shading normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
       const Vec3 toward = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
-      batch.add({toward, from[k].ng, toward, Rgb(1.0f)}, from[k].p, from[k].p_error, from[k].triangle, Rgb(1.0f),
-                draw[k], Rgb(1.0f), true);
+      const int lane = batch.add({toward, from[k].ng, toward, Rgb(1.0f)}, from[k].p, from[k].p_error);
+      batch.request_light(lane, from[k].triangle, Rgb(1.0f), draw[k], Rgb(1.0f), true);
     }
-    LaneLightResult out[LaneLightBatch::kLanes], sse[LaneLightBatch::kLanes];
-    lane_direct_light(batch, out);
-    lane_direct_light(batch, sse, false);
+    LaneLightResult out[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
+    LaneBounce unasked[LaneVertexBatch::kLanes];
+    lane_vertices(batch, out, unasked);
+    lane_vertices(batch, sse, unasked, false);
     for (int k = 0; k < n; ++k) {
       // Without AVX2 (SSE pairs), the same bits.
       ASSERT_EQ(out[k].cast, sse[k].cast);
@@ -329,12 +330,13 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   const float edges[] = {0.0f, 0.5f, 0x1.fffffep-1f};
   int compared = 0, refused = 0, bent = 0, in_plane = 0;
   for (int round = 0; round < 3000; ++round) {
-    const int n = 1 + round % LaneBounceBatch::kLanes;
-    LaneBounceBatch batch;
-    SurfaceHit hits[LaneBounceBatch::kLanes];
-    std::optional<Bsdf> bsdfs[LaneBounceBatch::kLanes];
-    Vec3 wos[LaneBounceBatch::kLanes];
-    Vec2 draws[LaneBounceBatch::kLanes];
+    const int n = 1 + round % LaneVertexBatch::kLanes;
+    LaneVertexBatch batch;
+    SurfaceHit hits[LaneVertexBatch::kLanes];
+    std::optional<Bsdf> bsdfs[LaneVertexBatch::kLanes];
+    Vec3 wos[LaneVertexBatch::kLanes];
+    Vec2 draws[LaneVertexBatch::kLanes];
+    bool asked[LaneVertexBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       SurfaceHit& hit = hits[k];
       hit.p = Vec3(rng.next_float() - 0.5f, 100.0f * rng.next_float(), -3.0f) * (rng.next_float() < 0.5f ? 1e-3f : 1e3f);
@@ -354,12 +356,17 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       bsdfs[k].emplace(params, hit.ns, hit.ng, wo, 1.0f);
       draws[k] = rng.next_float() < 0.2f ? Vec2{edges[rng.next_u32() % 3], edges[rng.next_u32() % 3]}
                                          : Vec2{rng.next_float(), rng.next_float()};
-      batch.add({hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error, draws[k]);
+      // A lane that asks for no bounce beside those that do (it would ask for its light sample alone).
+      const int lane = batch.add({hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error);
+      asked[k] = rng.next_float() < 0.8f;
+      if (asked[k]) batch.request_bounce(lane, draws[k]);
     }
-    LaneBounce out[LaneBounceBatch::kLanes], sse[LaneBounceBatch::kLanes];
-    lane_bounce(batch, out);
-    lane_bounce(batch, sse, false);
+    LaneBounce out[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
+    LaneLightResult unasked[LaneVertexBatch::kLanes];
+    lane_vertices(batch, unasked, out);
+    lane_vertices(batch, unasked, sse, false);
     for (int k = 0; k < n; ++k) {
+      if (!asked[k]) continue;  // its result is not to be read
       const LaneBounce& got = out[k];
       const LaneBounce& other = sse[k];
       const std::optional<BsdfSample> expected = bsdfs[k]->sample(0.5f, draws[k]);

@@ -1,0 +1,50 @@
+// LaneVertexBatch, lane_vertices: Lambertian vertices' next-event estimation and bounce in SIMD lanes.
+#pragma once
+
+#include "core/emitters.h"
+#include "core/ray.h"
+#include "core/vec3.h"
+#include "integrators/lane_bounce.h"
+#include "integrators/lane_direct_light.h"
+#include "integrators/lane_lambertian_lobe.h"
+
+namespace prism {
+
+// A vertex's fields; rows of three hold a vector's x, y and z. The surface's come first
+// (LambertianSurfaceFields), then the light request's, then the bounce's.
+struct LaneVertexFields : LambertianSurfaceFields {
+  enum Row {
+    kBeta = kSurfaceRows, kP0 = kBeta + 3, kP1 = kP0 + 3, kP2 = kP1 + 3, kP3 = kP2 + 3, kLightN = kP3 + 3,
+    kEmission = kLightN + 3,  // the rows of three above, one each below
+    kLightUx = kEmission + 3, kLightUy, kNear, kQuad, kHalf, kB0, kB1, kB2, kSlack, kPdfArea, kPmf, kDoubleSided,
+    kWantsLight, kBounceUx, kBounceUy, kWantsBounce, kRows
+  };
+};
+
+// Up to kLanes Lambertian vertices (Bsdf::lambertian_only), each asking for its light sample, its
+// bounce, or both. Outside every volume only: no medium absorbs.
+class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneVertexFields::kRows> {
+ public:
+  // A vertex: its surface, its hit's point and the point's error bound. Returns its lane, which asks
+  // for nothing yet. At most kLanes.
+  int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error);
+  // The lane's light sample: the triangle its hit is on, the path's throughput, the light point
+  // drawn for it (Emitters::triangle_draw), and that light's emitted radiance (0 where it emits
+  // nothing) and sidedness.
+  void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light,
+                     const Rgb& emission, bool double_sided);
+  // The lane's bounce, with its direction draw.
+  void request_bounce(int lane, Vec2 u);
+  TriangleId leaves(int lane) const { return leaves_[lane]; }
+
+ private:
+  TriangleId leaves_[kLanes];
+};
+
+// For each lane of the batch, the lobe's frame (once), then what it asks for: its light sample's
+// shadow ray and contribution (lanes::direct_light) and its bounce (lanes::bounce). A result the
+// lane did not ask for is not to be read. In AVX2 where the CPU has it and `avx2` allows it, else
+// in SSE pairs (the same bits).
+void lane_vertices(const LaneVertexBatch& batch, LaneLightResult* lights, LaneBounce* bounces, bool avx2 = true);
+
+}  // namespace prism

@@ -171,6 +171,29 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
   }
   pick_ = Distribution1D(power);
   if (how_ == LightSampling::Tree) build_tree(desc, power);
+  for (const Emitter& e : emitters_) {
+    const MaterialDesc& m = desc.material(e.material);
+    lane_records_.push_back(lane_record(e, m.is_emissive() ? m.emissive * m.emissive_strength : Rgb(0.0f),
+                                        m.double_sided));
+  }
+}
+
+Emitters::LaneRecord Emitters::lane_record(const Emitter& e, const Rgb& emission, bool double_sided) {
+  LaneRecord r;
+  const auto put = [&](int field, const Vec3& v) {
+    for (int i = 0; i < 3; ++i) r.v[field + i] = v[i];
+  };
+  put(LaneRecord::kP0, e.p0);
+  put(LaneRecord::kP1, e.p1);
+  put(LaneRecord::kP2, e.p2);
+  put(LaneRecord::kP3, e.p3);
+  put(LaneRecord::kNormal, e.normal);
+  put(LaneRecord::kEmission, emission);
+  r.v[LaneRecord::kSlack] = e.quad_slack;
+  r.v[LaneRecord::kPdfArea] = 1.0f / e.area;
+  r.v[LaneRecord::kQuad] = e.quad ? 1.0f : 0.0f;
+  r.v[LaneRecord::kDoubleSided] = double_sided ? 1.0f : 0.0f;
+  return r;
 }
 
 void Emitters::build_tree(const SceneDesc& desc, const std::vector<double>& power) {
@@ -467,6 +490,7 @@ Emitters::Draw Emitters::triangle_draw(const std::optional<Pick>* chosen, const 
   if (!(e.area > 0) || !faces(e, plane_distance)) return Draw::kNothing;
   u.x = point_draw(*picked, u_spare);
   out.light = &e;
+  out.record = &lane_records_[picked->index];
   out.u = u;
   out.near = near_enough(e, plane_distance);
   out.half = area_point_draw(e, u, out.b);

@@ -109,8 +109,20 @@ class Emitters {
   // SIMD lanes (lanes::direct_light, integrators/lane_direct_light.h), which finishes the sample bit
   // for bit as sample_light does: by solid angle where `near` and the solid angle pays
   // (SolidAngleView), else the point by area.
+  // An untextured triangle or quad light's constants as SIMD kernels load them (lanes::direct_light):
+  // three loads of eight floats each, which eight lights' records transpose into rows of lanes.
+  struct LaneRecord {
+    enum Field { kP0 = 0, kP1 = 3, kP2 = 6, kP3 = 9, kNormal = 12, kEmission = 15, kSlack = 18, kPdfArea, kQuad,
+                 kDoubleSided, kFields };
+    static constexpr int kFloats = 24;
+    static_assert(kFields <= kFloats);
+    alignas(32) float v[kFloats] = {};
+  };
+  // Light e's record, with the radiance it emits (0 where it emits nothing) and its sidedness.
+  static LaneRecord lane_record(const Emitter& e, const Rgb& emission, bool double_sided);
   struct TriangleDraw {
     const Emitter* light = nullptr;
+    const LaneRecord* record = nullptr;  // the light's
     Vec2 u;           // the point's draw (u.x rescaled, point_draw)
     bool near = false;  // near_enough: by solid angle, where it pays
     int half = 0;     // the point by area: in half A (0) or a quad's half B (1)
@@ -207,6 +219,7 @@ class Emitters {
   const SceneDesc* desc_ = nullptr;
   LightSampling how_ = LightSampling::Tree;
   std::vector<Emitter> emitters_;
+  std::vector<LaneRecord> lane_records_;  // per emitter (those of spheres and textured lights unused)
   Distribution1D pick_;
   // Tree sampling: first among the tree as a whole (slot 0, when it has lights) and the lights at
   // infinity, by power; then down the tree. unbounded_[slot] is the light a slot stands for.

@@ -29,15 +29,21 @@ namespace lanes {
 template <class B>
 [[gnu::always_inline]] inline void direct_light(const B& batch, int first, const Lobe& lobe, LaneLightResult* out) {
   const int f = first;
+  // The lights' constants, from their records (Emitters::LaneRecord).
+  using R = Emitters::LaneRecord;
+  F8 c[3][8];
+  for (int i = 0; i < 3; ++i) transpose(batch.records(f), 8 * i, c[i]);
+  const auto field = [&](int r) { return c[r / 8][r % 8]; };
+  const auto vector = [&](int r) { return V8{field(r), field(r + 1), field(r + 2)}; };
   const struct {
     V8 p, p_error, f, beta, p0, p1, p2, p3, light_n, emission;
     F8 ux, uy, near, quad, half, b0, b1, b2, quad_slack, pdf_area, pmf, double_sided, wants;
-  } l{rows(batch, B::kP, f),       rows(batch, B::kPError, f),    rows(batch, B::kF, f),       rows(batch, B::kBeta, f),
-      rows(batch, B::kP0, f),      rows(batch, B::kP1, f),        rows(batch, B::kP2, f),      rows(batch, B::kP3, f),
-      rows(batch, B::kLightN, f),  rows(batch, B::kEmission, f),  row(batch, B::kLightUx, f),  row(batch, B::kLightUy, f),
-      row(batch, B::kNear, f),     row(batch, B::kQuad, f),       row(batch, B::kHalf, f),     row(batch, B::kB0, f),
-      row(batch, B::kB1, f),       row(batch, B::kB2, f),         row(batch, B::kSlack, f),    row(batch, B::kPdfArea, f),
-      row(batch, B::kPmf, f),      row(batch, B::kDoubleSided, f), row(batch, B::kWantsLight, f)};
+  } l{rows(batch, B::kP, f),     rows(batch, B::kPError, f),   rows(batch, B::kF, f),      rows(batch, B::kBeta, f),
+      vector(R::kP0),            vector(R::kP1),               vector(R::kP2),             vector(R::kP3),
+      vector(R::kNormal),        vector(R::kEmission),         row(batch, B::kLightUx, f), row(batch, B::kLightUy, f),
+      row(batch, B::kNear, f),   field(R::kQuad),              row(batch, B::kHalf, f),    row(batch, B::kB0, f),
+      row(batch, B::kB1, f),     row(batch, B::kB2, f),        field(R::kSlack),           field(R::kPdfArea),
+      row(batch, B::kPmf, f),    field(R::kDoubleSided),       row(batch, B::kWantsLight, f)};
   // Emitters::sample_triangle: by solid angle where the vertex is near the light and that pays
   // (SolidAngleView), u.x choosing a quad's half in proportion to its share and rescaled within it.
   const M8 wants = l.wants != 0;

@@ -1,5 +1,8 @@
 #include "integrators/lane_vertices.h"
 
+#include <algorithm>
+#include <iterator>
+
 namespace prism {
 namespace {
 
@@ -17,37 +20,33 @@ struct Results {
 
 }  // namespace
 
+namespace {
+const Emitters::LaneRecord kNoLight;
+}  // namespace
+
+LaneVertexBatch::LaneVertexBatch() { std::fill(std::begin(records_), std::end(records_), kNoLight.v); }
+
 int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error) {
   const int lane = add_surface(surface, p, p_error);
   set(kWantsLight, lane, 0.0f);
   set(kWantsBounce, lane, 0.0f);
+  records_[lane] = kNoLight.v;
   return lane;
 }
 
-void LaneVertexBatch::request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light,
-                                    const Rgb& emission, bool double_sided) {
+void LaneVertexBatch::request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light) {
   leaves_[lane] = leaves;
+  records_[lane] = light.record->v;
   set(kWantsLight, lane, 1.0f);
   set(kBeta, lane, beta);
-  const Emitters::Emitter& e = *light.light;
-  set(kP0, lane, e.p0);
-  set(kP1, lane, e.p1);
-  set(kP2, lane, e.p2);
-  set(kP3, lane, e.p3);
   set(kLightUx, lane, light.u.x);
   set(kLightUy, lane, light.u.y);
   set(kNear, lane, light.near ? 1.0f : 0.0f);
-  set(kQuad, lane, e.quad ? 1.0f : 0.0f);
   set(kHalf, lane, float(light.half));
   set(kB0, lane, light.b.b0);
   set(kB1, lane, light.b.b1);
   set(kB2, lane, light.b.b2);
-  set(kLightN, lane, e.normal);
-  set(kSlack, lane, e.quad_slack);
-  set(kPdfArea, lane, 1.0f / e.area);
   set(kPmf, lane, light.pmf);
-  set(kEmission, lane, emission);
-  set(kDoubleSided, lane, double_sided ? 1.0f : 0.0f);
 }
 
 void LaneVertexBatch::request_bounce(int lane, Vec2 u) {

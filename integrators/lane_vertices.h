@@ -12,12 +12,13 @@ namespace prism {
 
 // A vertex's fields; rows of three hold a vector's x, y and z. The surface's come first
 // (LambertianSurfaceFields), then the light request's, then the bounce's.
+// The light's own constants are not among them: each lane points at its light's record
+// (Emitters::LaneRecord).
 struct LaneVertexFields : LambertianSurfaceFields {
   enum Row {
-    kBeta = kSurfaceRows, kP0 = kBeta + 3, kP1 = kP0 + 3, kP2 = kP1 + 3, kP3 = kP2 + 3, kLightN = kP3 + 3,
-    kEmission = kLightN + 3,  // the rows of three above, one each below
-    kLightUx = kEmission + 3, kLightUy, kNear, kQuad, kHalf, kB0, kB1, kB2, kSlack, kPdfArea, kPmf, kDoubleSided,
-    kWantsLight, kBounceUx, kBounceUy, kWantsBounce, kRows
+    kBeta = kSurfaceRows,  // three rows, one each below
+    kLightUx = kBeta + 3, kLightUy, kNear, kHalf, kB0, kB1, kB2, kPmf, kWantsLight, kBounceUx, kBounceUy,
+    kWantsBounce, kRows
   };
 };
 
@@ -28,17 +29,20 @@ class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneV
   // A vertex: its surface, its hit's point and the point's error bound. Returns its lane, which asks
   // for nothing yet. At most kLanes.
   int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error);
-  // The lane's light sample: the triangle its hit is on, the path's throughput, the light point
-  // drawn for it (Emitters::triangle_draw), and that light's emitted radiance (0 where it emits
-  // nothing) and sidedness.
-  void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light,
-                     const Rgb& emission, bool double_sided);
+  // The lane's light sample: the triangle its hit is on, the path's throughput, and the light point
+  // drawn for it (Emitters::triangle_draw), whose record must outlive the kernel's run.
+  void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light);
   // The lane's bounce, with its direction draw.
   void request_bounce(int lane, Vec2 u);
   TriangleId leaves(int lane) const { return leaves_[lane]; }
+  // The light records of lanes first to first + 7 (zeros where a lane asks for no light).
+  const float* const* records(int first) const { return &records_[first]; }
+
+  LaneVertexBatch();
 
  private:
   TriangleId leaves_[kLanes];
+  const float* records_[kLanes];
 };
 
 // For each lane of the batch, the lobe's frame (once), then what it asks for: its light sample's

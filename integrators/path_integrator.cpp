@@ -155,9 +155,7 @@ bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hi
     case Emitters::Draw::kOther: return false;
     case Emitters::Draw::kOnTriangle: break;
   }
-  const MaterialDesc& light = scene.desc().material(draw.light->material);
-  lanes.request_light(lane, hit.triangle, path.beta, draw,
-                      light.is_emissive() ? light.emissive * light.emissive_strength : Rgb(0.0f), light.double_sided);
+  lanes.request_light(lane, hit.triangle, path.beta, draw);
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
   return true;

@@ -266,6 +266,7 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
     LaneVertexBatch batch;
     Emitters::Emitter light[LaneVertexBatch::kLanes];
     Emitters::TriangleDraw draw[LaneVertexBatch::kLanes];
+    Emitters::LaneRecord record[LaneVertexBatch::kLanes];
     SurfaceHit from[LaneVertexBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       from[k].p = point();
@@ -280,12 +281,13 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       e.quad_slack = rng.next_float() < 0.5f ? 0.0f : 1e-7f;
       e.area = 1;
       const float u = rng.next_float(), v = rng.next_float() * (1 - u);
-      draw[k] = {.light = &e, .b = {1.0f - u - v, u, v}, .pmf = 1.0f};
+      record[k] = Emitters::lane_record(e, Rgb(1.0f), true);
+      draw[k] = {.light = &e, .record = &record[k], .b = {1.0f - u - v, u, v}, .pmf = 1.0f};
       // A surface that sees the light: its shading normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
       const Vec3 toward = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
       const int lane = batch.add({toward, from[k].ng, toward, Rgb(1.0f)}, from[k].p, from[k].p_error);
-      batch.request_light(lane, from[k].triangle, Rgb(1.0f), draw[k], Rgb(1.0f), true);
+      batch.request_light(lane, from[k].triangle, Rgb(1.0f), draw[k]);
     }
     LaneLightResult out[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
     LaneBounce unasked[LaneVertexBatch::kLanes];
@@ -397,6 +399,23 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
   EXPECT_GT(bent, 100);
   EXPECT_GT(in_plane, 100);
+}
+
+// lanes::transpose turns eight records into rows of lanes: lane k of row j is record k's float j.
+TEST(Lanes, TransposeTurnsRecordsIntoRows) {
+  float records[lanes::kLanes][24];
+  const float* pointers[lanes::kLanes];
+  for (int k = 0; k < lanes::kLanes; ++k) {
+    for (int j = 0; j < 24; ++j) records[k][j] = float(100 * k + j);
+    pointers[lanes::kLanes - 1 - k] = records[k];  // in no particular order in memory
+  }
+  for (int offset = 0; offset < 24; offset += 8) {
+    lanes::F8 rows[8];
+    lanes::transpose(pointers, offset, rows);
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < lanes::kLanes; ++k)
+        ASSERT_EQ(rows[j][k], pointers[k][offset + j]) << "offset " << offset << " row " << j << " lane " << k;
+  }
 }
 
 // lanes::atan2_fast is atan2_fast, bit for bit, in every quadrant and on the axes: signed zeros,

@@ -1,6 +1,8 @@
 // LaneRows: the fields of up to 32 vertices' requests to a SIMD kernel, each field a row of lanes.
 #pragma once
 
+#include <algorithm>
+
 #include "core/vec3.h"
 
 namespace prism {
@@ -17,7 +19,16 @@ class LaneRows {
   const float* row(int r) const { return rows_[r]; }
 
  protected:
-  int next_lane() { return size_++; }
+  // A lane's first use of a block of kBlock lanes, which the kernels read whole, fills the block with
+  // zeros: lanes past size() then hold finite values (zeros, or an earlier round's), whose results
+  // are never read.
+  int next_lane() {
+    if (size_ % kBlock == 0 && size_ >= written_) {
+      for (float* row : rows_) std::fill_n(row + size_, kBlock, 0.0f);
+      written_ = size_ + kBlock;
+    }
+    return size_++;
+  }
   void set(int r, int lane, float v) { rows_[r][lane] = v; }
   void set(int r, int lane, const Vec3& v) {
     rows_[r][lane] = v.x;
@@ -26,9 +37,11 @@ class LaneRows {
   }
 
  private:
-  // Zeros at first: lanes past size() hold finite values, whose results are never read.
-  alignas(32) float rows_[kRows][kLanes] = {};
+  static constexpr int kBlock = 8;  // lanes a kernel reads at once (lanes::kLanes)
+  static_assert(kLanes % kBlock == 0);
+  alignas(32) float rows_[kRows][kLanes];
   int size_ = 0;
+  int written_ = 0;  // lanes [0, written_) have been filled (next_lane)
 };
 
 }  // namespace prism

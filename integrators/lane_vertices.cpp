@@ -1,7 +1,6 @@
 #include "integrators/lane_vertices.h"
 
 #include <algorithm>
-#include <iterator>
 
 namespace prism {
 namespace {
@@ -24,12 +23,12 @@ namespace {
 const Emitters::LaneRecord kNoLight;
 }  // namespace
 
-LaneVertexBatch::LaneVertexBatch() { std::fill(std::begin(records_), std::end(records_), kNoLight.v); }
-
 int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error) {
   const int lane = add_surface(surface, p, p_error);
   set(kWantsLight, lane, 0.0f);
   set(kWantsBounce, lane, 0.0f);
+  // The kernel reads its block's eight records: those of lanes not (yet) asking for a light are zeros.
+  if (lane % lanes::kLanes == 0) std::fill_n(&records_[lane], lanes::kLanes, kNoLight.v);
   records_[lane] = kNoLight.v;
   return lane;
 }

@@ -38,8 +38,6 @@ class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneV
   // The light records of lanes first to first + 7 (zeros where a lane asks for no light).
   const float* const* records(int first) const { return &records_[first]; }
 
-  LaneVertexBatch();
-
  private:
   TriangleId leaves_[kLanes];
   const float* records_[kLanes];

@@ -173,12 +173,11 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
   if (how_ == LightSampling::Tree) build_tree(desc, power);
   for (const Emitter& e : emitters_) {
     const MaterialDesc& m = desc.material(e.material);
-    lane_records_.push_back(lane_record(e, m.is_emissive() ? m.emissive * m.emissive_strength : Rgb(0.0f),
-                                        m.double_sided));
+    lane_records_.push_back(lane_record(e, m.is_emissive() ? m.emissive * m.emissive_strength : Rgb(0.0f)));
   }
 }
 
-Emitters::LaneRecord Emitters::lane_record(const Emitter& e, const Rgb& emission, bool double_sided) {
+Emitters::LaneRecord Emitters::lane_record(const Emitter& e, const Rgb& emission) {
   LaneRecord r;
   const auto put = [&](int field, const Vec3& v) {
     for (int i = 0; i < 3; ++i) r.v[field + i] = v[i];
@@ -192,7 +191,8 @@ Emitters::LaneRecord Emitters::lane_record(const Emitter& e, const Rgb& emission
   r.v[LaneRecord::kSlack] = e.quad_slack;
   r.v[LaneRecord::kPdfArea] = 1.0f / e.area;
   r.v[LaneRecord::kQuad] = e.quad ? 1.0f : 0.0f;
-  r.v[LaneRecord::kDoubleSided] = double_sided ? 1.0f : 0.0f;
+  r.v[LaneRecord::kDoubleSided] = e.double_sided ? 1.0f : 0.0f;
+  r.v[LaneRecord::kLongestEdge2] = e.longest_edge2;
   return r;
 }
 
@@ -486,14 +486,11 @@ Emitters::Draw Emitters::triangle_draw(const std::optional<Pick>* chosen, const 
   if (picked->index >= emitters_.size()) return Draw::kOther;  // punctual or the environment
   const Emitter& e = emitters_[picked->index];
   if (e.sphere || e.textured) return Draw::kOther;
-  const float plane_distance = dot(ref - e.p0, e.normal);
-  if (!(e.area > 0) || !faces(e, plane_distance)) return Draw::kNothing;
+  if (!(e.area > 0)) return Draw::kNothing;
   u.x = point_draw(*picked, u_spare);
   out.light = &e;
   out.record = &lane_records_[picked->index];
   out.u = u;
-  out.near = near_enough(e, plane_distance);
-  out.half = area_point_draw(e, u, out.b);
   out.pmf = picked->pmf;
   return Draw::kOnTriangle;
 }

@@ -105,32 +105,32 @@ class Emitters {
     const Vec3& corner2(int) const { return p2; }
   };
 
-  // A draw sample_light would make on an untextured triangle or quad, for next-event estimation in
-  // SIMD lanes (lanes::direct_light, integrators/lane_direct_light.h), which finishes the sample bit
-  // for bit as sample_light does: by solid angle where `near` and the solid angle pays
-  // (SolidAngleView), else the point by area.
   // An untextured triangle or quad light's constants as SIMD kernels load them (lanes::direct_light):
   // three loads of eight floats each, which eight lights' records transpose into rows of lanes.
   struct LaneRecord {
     enum Field { kP0 = 0, kP1 = 3, kP2 = 6, kP3 = 9, kNormal = 12, kEmission = 15, kSlack = 18, kPdfArea, kQuad,
-                 kDoubleSided, kFields };
+                 kDoubleSided, kLongestEdge2, kFields };
     static constexpr int kFloats = 24;
     static_assert(kFields <= kFloats);
     alignas(32) float v[kFloats] = {};
   };
-  // Light e's record, with the radiance it emits (0 where it emits nothing) and its sidedness.
-  static LaneRecord lane_record(const Emitter& e, const Rgb& emission, bool double_sided);
+  // Light e's record, with the radiance it emits (0 where it emits nothing).
+  static LaneRecord lane_record(const Emitter& e, const Rgb& emission);
+  // The light sample_light would choose, and the point draw it would use, on an untextured triangle
+  // or quad with an area, for next-event estimation in SIMD lanes (lanes::direct_light,
+  // integrators/lane_direct_light.h). They finish the sample bit for bit as sample_light does: no
+  // sample from the light's back (faces), by solid angle where the vertex is near (near_enough) and
+  // the solid angle pays (SolidAngleView), else the point by area (area_point_draw).
   struct TriangleDraw {
     const Emitter* light = nullptr;
     const LaneRecord* record = nullptr;  // the light's
     Vec2 u;           // the point's draw (u.x rescaled, point_draw)
-    bool near = false;  // near_enough: by solid angle, where it pays
-    int half = 0;     // the point by area: in half A (0) or a quad's half B (1)
-    Barycentrics b;   // and its barycentrics there
     float pmf = 0;    // of choosing the light
   };
+  // The half (0: A, 1: B) and barycentrics a draw u places a point at by area.
+  static int area_point_draw(const Emitter& e, Vec2 u, Barycentrics& b);
   enum class Draw {
-    kNothing,     // sample_light's pdf is 0: no light, its back, or no area
+    kNothing,     // sample_light's pdf is 0: no light, or one with no area
     kOnTriangle,  // `out` holds the draw
     kOther,       // another kind of sample: sample_light makes it
   };
@@ -191,8 +191,6 @@ class Emitters {
   EmitterSample sample_triangle(const Emitter& e, const Vec3& ref, Vec2 u) const;
   // plane_distance is dot(ref - p0, normal): positive on the front side.
   static bool faces(const Emitter& e, float plane_distance);
-  // The half (0: A, 1: B) and barycentrics a draw u places a point at by area.
-  static int area_point_draw(const Emitter& e, Vec2 u, Barycentrics& b);
   // The point at barycentrics b of half A (0) or B (1).
   EmitterSample triangle_point(const Emitter& e, int half, const Barycentrics& b) const;
   float triangle_pdf(const Emitter& e, const Vec3& ref, const Vec3& p, const Vec3& n) const;

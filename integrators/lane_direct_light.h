@@ -37,21 +37,31 @@ template <class B>
   const auto vector = [&](int r) { return V8{field(r), field(r + 1), field(r + 2)}; };
   const struct {
     V8 p, p_error, f, beta, p0, p1, p2, p3, light_n, emission;
-    F8 ux, uy, near, quad, half, b0, b1, b2, quad_slack, pdf_area, pmf, double_sided, wants;
-  } l{rows(batch, B::kP, f),     rows(batch, B::kPError, f),   rows(batch, B::kF, f),      rows(batch, B::kBeta, f),
-      vector(R::kP0),            vector(R::kP1),               vector(R::kP2),             vector(R::kP3),
-      vector(R::kNormal),        vector(R::kEmission),         row(batch, B::kLightUx, f), row(batch, B::kLightUy, f),
-      row(batch, B::kNear, f),   field(R::kQuad),              row(batch, B::kHalf, f),    row(batch, B::kB0, f),
-      row(batch, B::kB1, f),     row(batch, B::kB2, f),        field(R::kSlack),           field(R::kPdfArea),
-      row(batch, B::kPmf, f),    field(R::kDoubleSided),       row(batch, B::kWantsLight, f)};
+    F8 ux, uy, quad, quad_slack, pdf_area, pmf, double_sided, longest_edge2, wants;
+  } l{rows(batch, B::kP, f),       rows(batch, B::kPError, f),   rows(batch, B::kF, f),      rows(batch, B::kBeta, f),
+      vector(R::kP0),              vector(R::kP1),               vector(R::kP2),             vector(R::kP3),
+      vector(R::kNormal),          vector(R::kEmission),         row(batch, B::kLightUx, f), row(batch, B::kLightUy, f),
+      field(R::kQuad),             field(R::kSlack),             field(R::kPdfArea),         row(batch, B::kPmf, f),
+      field(R::kDoubleSided),      field(R::kLongestEdge2),      row(batch, B::kWantsLight, f)};
+  // Emitters::triangle_draw's part that depends on the vertex: the light's side it is on (faces),
+  // whether it is near (near_enough), and the point by area (area_point_draw: for a triangle
+  // sample_uniform_triangle, for a quad the half u falls in).
+  const F8 plane_distance = dot(sub(l.p, l.p0), l.light_n);
+  const M8 wants = (l.wants != 0) & ((l.double_sided != 0) | (plane_distance > 0));
+  const M8 quad = l.quad != 0;
+  const F8 su = root(l.ux);
+  const F8 t0 = splat(1.0f) - su, t1 = l.uy * su;
+  const M8 lower = l.ux + l.uy <= 1;
+  const F8 b0 = pick(quad, pick(lower, splat(1.0f) - l.ux - l.uy, splat(1.0f) - l.uy), t0);
+  const F8 b1 = pick(quad, pick(lower, l.ux, l.ux + l.uy - splat(1.0f)), t1);
+  const F8 b2 = pick(quad, pick(lower, l.uy, splat(1.0f) - l.ux), splat(1.0f) - t0 - t1);
+  const M8 half_by_area = quad & ~lower;
   // Emitters::sample_triangle: by solid angle where the vertex is near the light and that pays
   // (SolidAngleView), u.x choosing a quad's half in proportion to its share and rescaled within it.
-  const M8 wants = l.wants != 0;
-  M8 by_solid_angle = wants & (l.near != 0), in_b{};
+  M8 by_solid_angle = wants & (l.longest_edge2 > plane_distance * plane_distance), in_b{};
   F8 solid_angle = splat(0.0f);
-  Barycentrics8 at{l.b0, l.b1, l.b2, ~M8{}};  // by area, every lane drawn
+  Barycentrics8 at{b0, b1, b2, ~M8{}};  // by area, every lane drawn
   if (any(by_solid_angle)) {
-    const M8 quad = l.quad != 0;
     const Corner8 c0 = see(l.p, l.p0), c1 = see(l.p, l.p1), c2 = see(l.p, l.p2);
     const SphericalTriangle8 a = spherical_triangle(l.p, c0, c1, c2);
     const SphericalTriangle8 b = spherical_triangle(l.p, c1, see(l.p, l.p3), c2);
@@ -63,11 +73,11 @@ template <class B>
                                      splat(kOneMinusEpsilon)),
                        l.ux);
     const Barycentrics8 s = sample(pick(in_b, b, a), ux, l.uy);
-    at = {pick(by_solid_angle, s.b0, l.b0), pick(by_solid_angle, s.b1, l.b1), pick(by_solid_angle, s.b2, l.b2),
+    at = {pick(by_solid_angle, s.b0, b0), pick(by_solid_angle, s.b1, b1), pick(by_solid_angle, s.b2, b2),
           ~by_solid_angle | s.drawn};
   }
   // Emitters::triangle_point at those barycentrics of the half they are in.
-  const M8 half_b = pick(by_solid_angle, in_b, l.half != 0);
+  const M8 half_b = pick(by_solid_angle, in_b, half_by_area);
   const V8 c0 = pick(half_b, l.p1, l.p0), c1 = pick(half_b, l.p3, l.p1), c2 = l.p2;
   const V8 w0 = mul(c0, at.b0), w1 = mul(c1, at.b1), w2 = mul(c2, at.b2);
   const V8 lp = add(add(w0, w1), w2);

@@ -40,11 +40,6 @@ void LaneVertexBatch::request_light(int lane, TriangleId leaves, const Rgb& beta
   set(kBeta, lane, beta);
   set(kLightUx, lane, light.u.x);
   set(kLightUy, lane, light.u.y);
-  set(kNear, lane, light.near ? 1.0f : 0.0f);
-  set(kHalf, lane, float(light.half));
-  set(kB0, lane, light.b.b0);
-  set(kB1, lane, light.b.b1);
-  set(kB2, lane, light.b.b2);
   set(kPmf, lane, light.pmf);
 }
 

@@ -17,8 +17,7 @@ namespace prism {
 struct LaneVertexFields : LambertianSurfaceFields {
   enum Row {
     kBeta = kSurfaceRows,  // three rows, one each below
-    kLightUx = kBeta + 3, kLightUy, kNear, kHalf, kB0, kB1, kB2, kPmf, kWantsLight, kBounceUx, kBounceUy,
-    kWantsBounce, kRows
+    kLightUx = kBeta + 3, kLightUy, kPmf, kWantsLight, kBounceUx, kBounceUy, kWantsBounce, kRows
   };
 };
 

@@ -280,9 +280,9 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       e.normal = Vec3(0, rng.next_float() < 0.5f ? -1.0f : 1.0f, 0);
       e.quad_slack = rng.next_float() < 0.5f ? 0.0f : 1e-7f;
       e.area = 1;
-      const float u = rng.next_float(), v = rng.next_float() * (1 - u);
-      record[k] = Emitters::lane_record(e, Rgb(1.0f), true);
-      draw[k] = {.light = &e, .record = &record[k], .b = {1.0f - u - v, u, v}, .pmf = 1.0f};
+      e.double_sided = true;
+      record[k] = Emitters::lane_record(e, Rgb(1.0f));
+      draw[k] = {.light = &e, .record = &record[k], .u = {rng.next_float(), rng.next_float()}, .pmf = 1.0f};
       // A surface that sees the light: its shading normal toward the light's first corner, wo along it.
       const Vec3 to = e.p0 - from[k].p;
       const Vec3 toward = length(to) > 0 ? normalize(to) : Vec3(0, 1, 0);
@@ -301,10 +301,12 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       EXPECT_EQ(out[k].ray.origin, sse[k].ray.origin);
       EXPECT_EQ(out[k].ray.dir, sse[k].ray.dir);
       const Emitters::TriangleDraw& l = draw[k];
-      // Emitters::triangle_point's point and error bound (half A of a triangle).
-      const Vec3 p = l.light->p0 * l.b.b0 + l.light->p1 * l.b.b1 + l.light->p2 * l.b.b2;
+      // Emitters::triangle_point's point and error bound (half A of a triangle) at the draw by area.
+      Barycentrics b;
+      Emitters::area_point_draw(*l.light, l.u, b);
+      const Vec3 p = l.light->p0 * b.b0 + l.light->p1 * b.b1 + l.light->p2 * b.b2;
       const Vec3 p_error =
-          (abs(l.light->p0 * l.b.b0) + abs(l.light->p1 * l.b.b1) + abs(l.light->p2 * l.b.b2)) * kHitRelativeError +
+          (abs(l.light->p0 * b.b0) + abs(l.light->p1 * b.b1) + abs(l.light->p2 * b.b2)) * kHitRelativeError +
           Vec3(l.light->quad_slack);
       const Ray expected = spawn_ray_between(from[k], p, p_error, l.light->normal);
       const Ray& got = out[k].ray;

@@ -243,18 +243,29 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
 
   const VertexSamples& u = *at.draws;
   const float eta = path.media.interface_eta(material, hit.material, from_front);
-  const SurfaceParams params = surface_params(desc, material, hit.uv, hit.uv_width());
+  // The material's parameters at the hit, made only where they are needed: a material whose
+  // factors alone say it is Lambertian (lambertian_everywhere) needs its base colour alone.
+  std::optional<SurfaceParams> params_at_hit;
+  const auto params = [&]() -> const SurfaceParams& {
+    if (!params_at_hit) params_at_hit.emplace(surface_params(desc, material, hit.uv, hit.uv_width()));
+    return *params_at_hit;
+  };
   const Vec3 ns = shading_normal(desc, material, hit);
   // The Lambertian lobe alone is the lanes' case: they make its frame themselves, and its Bsdf is
   // built only where the scalar code below needs it (casters that may aim the bounce, a light
   // sample the lanes do not take).
-  const bool in_lanes = lanes && Bsdf::lambertian_only(params, eta);
+  std::optional<bool> lambertian;
+  if (lanes) lambertian = lambertian_everywhere(material, eta);
+  const bool in_lanes = lanes && (lambertian ? *lambertian : Bsdf::lambertian_only(params(), eta));
   std::optional<Bsdf> built;
   const auto bsdf = [&]() -> const Bsdf& {
-    if (!built) built.emplace(params, ns, hit.ng, wo, eta);
+    if (!built) built.emplace(params(), ns, hit.ng, wo, eta);
     return *built;
   };
-  const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error) : -1;
+  const auto albedo = [&] {  // surface_params' base colour, without the rest where it was not made
+    return params_at_hit ? params_at_hit->base_color : base_color(desc, material, hit.uv, hit.uv_width());
+  };
+  const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error) : -1;
 
   Bounce bounce;
   if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) choose_bounce(scene, hit, bsdf(), bounce);

@@ -72,11 +72,6 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   if (non_delta != 1) only_lobe_ = -1;
 }
 
-bool Bsdf::lambertian_only(const SurfaceParams& p, float eta) {
-  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
-  return m == 0 && t == 0 && (eta == 1.0f || !(p.specular > 0));
-}
-
 Rgb Bsdf::straight_through() const {
   if (!valid_ || !dielectric_ || !(pick_[kDielectric] > 0)) return {};
   return dielectric_->straight_transmittance(wo_.z) * weight_[kDielectric];

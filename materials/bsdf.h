@@ -2,6 +2,7 @@
 // KHR_materials_transmission and _ior), in world space for a fixed outgoing direction.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 
 #include "core/frame.h"
@@ -49,7 +50,10 @@ class Bsdf {
   // Whether the mixture at a point with these parameters and eta is the Lambertian lobe alone: no
   // metal, no transmission, and a specular layer that reflects nothing (no index step, or no
   // weight). SIMD kernels make that lobe's frame themselves (integrators/lane_lambertian_lobe.h).
-  static bool lambertian_only(const SurfaceParams& params, float eta);
+  static bool lambertian_only(const SurfaceParams& params, float eta) {
+    const float m = std::clamp(params.metallic, 0.0f, 1.0f), t = std::clamp(params.transmission, 0.0f, 1.0f);
+    return m == 0 && t == 0 && (eta == 1.0f || !(params.specular > 0));
+  }
   // True when no lobe transmits: every direction it scatters to stays on wo's side.
   bool reflects_only() const { return weight_[kDielectric] == 0; }
   // What passes straight through a smooth thin-walled sheet along -wo: the weight sample()'s

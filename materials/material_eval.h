@@ -2,6 +2,8 @@
 // emitted radiance.
 #pragma once
 
+#include <optional>
+
 #include "core/scene_desc.h"
 #include "core/surface_hit.h"
 #include "materials/bsdf.h"
@@ -19,6 +21,10 @@ float material_alpha(const SceneDesc& scene, int material, Vec2 uv);
 
 // Every glTF factor multiplied by its texture at uv, over a footprint uv_width wide (as base_color).
 SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv, float uv_width = 0);
+
+// Bsdf::lambertian_only at every point of `m`, for the interface's eta, where no texture scales
+// the factors it depends on (metallic, transmission, specular); nullopt where one does.
+std::optional<bool> lambertian_everywhere(const MaterialDesc& m, float eta);
 
 // Radiance emitted by material `material` at uv toward w, for a surface whose front-face
 // normal is ng: emissive factor x texture x strength, from the front face only unless the

@@ -12,6 +12,7 @@
 #include "materials/conductor_bxdf.h"
 #include "materials/dielectric_bxdf.h"
 #include "materials/fresnel.h"
+#include "materials/material_eval.h"
 #include "materials/microfacet.h"
 #include "statistics.h"
 
@@ -436,6 +437,59 @@ TEST(SmoothDielectric, IndexOneTransmitsEverythingUnbent) {
   EXPECT_TRUE(s->transmission);
   EXPECT_EQ(s->wi, -wo);
   EXPECT_EQ(s->f.x * std::abs(s->wi.z) / s->pdf, 1.0f);
+}
+
+}  // namespace
+}  // namespace prism
+
+namespace prism {
+namespace {
+
+// lambertian_everywhere says what Bsdf::lambertian_only says of surface_params at any point, for
+// materials whose factors decide it, and declines (nullopt) where a texture scales one of them.
+TEST(LambertianEverywhere, AgreesWithTheParametersAtEveryPoint) {
+  SceneDesc scene;
+  ImageDesc& image = scene.images.emplace_back();
+  image.width = image.height = 2;
+  image.channels = 4;
+  image.texels = {0, 0, 0, 0, 1, 1, 1, 1, 0.5f, 0.5f, 0.5f, 0.5f, 0, 1, 0, 1};
+  scene.textures.push_back({.image = 0});
+  const float nan = std::nanf("");
+  const float metallics[] = {0, 1, -0.5f, 0.25f, nan}, transmissions[] = {0, 1, -1, 0.5f, nan};
+  const float speculars[] = {1, 0, -1, 0.5f, nan}, etas[] = {1, 1.5f, 1 / 1.5f};
+  Pcg32 rng(7, 8);
+  int decided = 0, lambertian = 0, declined = 0;
+  for (const float metallic : metallics)
+    for (const float transmission : transmissions)
+      for (const float specular : speculars)
+        for (int textured = 0; textured < 4; ++textured)
+          for (const float eta : etas) {
+            MaterialDesc m;
+            m.metallic = metallic;
+            m.transmission = transmission;
+            m.specular = specular;
+            m.base_color_texture.texture = 0;  // does not decide it
+            if (textured == 1) m.metallic_roughness_texture.texture = 0;
+            if (textured == 2) m.transmission_texture.texture = 0;
+            if (textured == 3) m.specular_texture.texture = 0;
+            const std::optional<bool> said = lambertian_everywhere(m, eta);
+            if (!said) {
+              ++declined;
+              EXPECT_NE(textured, 0);
+              continue;
+            }
+            ++decided;
+            lambertian += *said;
+            for (int i = 0; i < 8; ++i) {
+              const Vec2 uv{rng.next_float(), rng.next_float()};
+              ASSERT_EQ(*said, Bsdf::lambertian_only(surface_params(scene, m, uv), eta))
+                  << "metallic " << metallic << " transmission " << transmission << " specular " << specular
+                  << " eta " << eta;
+            }
+          }
+  EXPECT_EQ(declined, 3 * 5 * 5 * 5 * 3);
+  EXPECT_GT(lambertian, 10);
+  EXPECT_GT(decided - lambertian, 10);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // LaneLightResult, lanes::direct_light: next-event estimation at Lambertian vertices toward area-drawn points, in lanes.
 #pragma once
 
+#include <iterator>
 #include <limits>
 
 #include "core/constants.h"

@@ -5,11 +5,13 @@
 namespace prism {
 namespace {
 
-// Lanes first to first + 7: the lobe's frame, shared by the light sample and the bounce.
 struct Results {
   LaneLightResult* lights;
   LaneBounce* bounces;
 };
+
+// Lanes first to first + 7: the lobe's frame, shared by the light samples and the bounces, then
+// each where a lane of the eight asks for it.
 [[gnu::always_inline]] inline void eight_lanes(const LaneVertexBatch& batch, int first, const Results* out) {
   using namespace lanes;
   const Lobe lobe = lambertian_lobe(batch, first);
@@ -17,10 +19,8 @@ struct Results {
   if (any(row(batch, LaneVertexBatch::kWantsBounce, first) != 0)) bounce(batch, first, lobe, out->bounces);
 }
 
-}  // namespace
+const Emitters::LaneRecord kNoLight;  // the record of a lane that asks for no light
 
-namespace {
-const Emitters::LaneRecord kNoLight;
 }  // namespace
 
 int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error) {

@@ -11,9 +11,8 @@
 namespace prism {
 
 // A vertex's fields; rows of three hold a vector's x, y and z. The surface's come first
-// (LambertianSurfaceFields), then the light request's, then the bounce's.
-// The light's own constants are not among them: each lane points at its light's record
-// (Emitters::LaneRecord).
+// (LambertianSurfaceFields), then the light request's, then the bounce's. The light's own
+// constants are not among them: each lane points at its light's record (Emitters::LaneRecord).
 struct LaneVertexFields : LambertianSurfaceFields {
   enum Row {
     kBeta = kSurfaceRows,  // three rows, one each below

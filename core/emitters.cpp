@@ -171,10 +171,8 @@ Emitters::Emitters(const SceneDesc& desc, LightSampling how) : desc_(&desc), how
   }
   pick_ = Distribution1D(power);
   if (how_ == LightSampling::Tree) build_tree(desc, power);
-  for (const Emitter& e : emitters_) {
-    const MaterialDesc& m = desc.material(e.material);
-    lane_records_.push_back(lane_record(e, m.is_emissive() ? m.emissive * m.emissive_strength : Rgb(0.0f)));
-  }
+  for (const Emitter& e : emitters_)
+    lane_records_.push_back(lane_record(e, desc.material(e.material).emission_factor()));
 }
 
 Emitters::LaneRecord Emitters::lane_record(const Emitter& e, const Rgb& emission) {

@@ -65,6 +65,8 @@ struct MaterialDesc {
   float alpha_cutoff = 0.5f;  // MASK: coverage below this is a hole
 
   bool is_emissive() const { return emissive_strength > 0 && max_component(emissive) > 0; }
+  // The radiance emitted before the emissive texture: factor x strength, 0 where it emits nothing.
+  Rgb emission_factor() const { return is_emissive() ? emissive * emissive_strength : Rgb(0.0f); }
   bool has_alpha() const { return alpha_mode != AlphaMode::Opaque; }
   // Every texture slot, present or not: what validation, feature detection and prefetching walk.
   std::array<const TextureRef*, 7> texture_slots() const {

@@ -57,7 +57,7 @@ Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& 
   const MaterialDesc& m = scene.material(material);
   if (!m.is_emissive()) return {};
   if (!m.double_sided && dot(ng, w) <= 0) return {};
-  Rgb e = m.emissive * m.emissive_strength;
+  Rgb e = m.emission_factor();
   if (m.emissive_texture.present()) e *= lookup_texture(scene, m.emissive_texture, uv).rgb;
   return e;
 }

@@ -29,14 +29,19 @@ class Sampler {
     const float a = next_1d();
     return {a, next_1d()};
   }
-  // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give.
-  virtual VertexSamples next_vertex() {
-    VertexSamples v;
+  // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give, written
+  // into `v` where the caller keeps them: returned through a temporary, the copy's wide loads of
+  // the callee's narrow stores stalled on store forwarding (docs/PERFORMANCE.md, session 44).
+  virtual void draw_vertex(VertexSamples& v) {
     v.light_spare = next_1d();
     v.light_point = next_2d();
     v.lobe = next_1d();
     v.direction = next_2d();
     v.roulette = next_1d();
+  }
+  VertexSamples next_vertex() {
+    VertexSamples v;
+    draw_vertex(v);
     return v;
   }
 };

@@ -42,8 +42,8 @@ class SobolSampler final : public Sampler {
 
   float next_1d() override { return owen_sobol_1d(reversed_index_, next_seeds()); }
   Vec2 next_2d() override { return owen_sobol_2d(reversed_index_, next_seeds()); }
-  VertexSamples next_vertex() override {
-    if (!owen_sobol_vertex_available()) return Sampler::next_vertex();  // one draw at a time
+  void draw_vertex(VertexSamples& v) override {
+    if (!owen_sobol_vertex_available()) return Sampler::draw_vertex(v);  // one draw at a time
     float u[7];
     const uint32_t d = dimension_;
     SobolSeedCache::Entry& e = cache_->entry(entry_);
@@ -55,7 +55,7 @@ class SobolSampler final : public Sampler {
       for (int k = 0; k < 5; ++k) run.set(k, next_seeds());  // in order, filling the cache
       owen_sobol_vertex(reversed_index_, {run.index, run.value0, run.value1}, u);
     }
-    return {u[0], {u[1], u[2]}, u[3], {u[4], u[5]}, u[6]};
+    v = {u[0], {u[1], u[2]}, u[3], {u[4], u[5]}, u[6]};
   }
 
  private:

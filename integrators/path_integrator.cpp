@@ -451,7 +451,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     for (int i = 0; i < m; ++i) {
       Path& path = paths[live[i]];
       if (!found[i] || !scatters_next(path)) continue;
-      draws[i] = path.sampler->next_vertex();
+      path.sampler->draw_vertex(draws[i]);
       if (!sky.has_map()) continue;
       if (const std::optional<Vec2> d = emitters.environment_map_draw(draws[i].light_spare, draws[i].light_point)) {
         sky_draw[sky_draws] = *d;

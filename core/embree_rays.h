@@ -30,6 +30,24 @@ inline RTCRayHit to_embree(const Ray& ray) {
   return rh;
 }
 
+// What a closest-hit query answered, as Scene::resolve_hit reads it: read field by field from the
+// query's layout, not copied whole (rtcGetRayHitFromRayHitN copies every field of a packet's lane,
+// and the hit's reconstruction then stalled on loading u and v together from two narrow stores).
+struct EmbreeHit {
+  unsigned geom = RTC_INVALID_GEOMETRY_ID, prim = RTC_INVALID_GEOMETRY_ID, inst = RTC_INVALID_GEOMETRY_ID;
+  float u = 0, v = 0;  // barycentrics of vertices 1 and 2
+  float t = 0;         // the hit's distance (tfar)
+};
+
+inline EmbreeHit embree_hit(const RTCRayHit& rh) {
+  return {rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar};
+}
+
+inline EmbreeHit embree_hit(const RTCRayHit8& rh, int lane) {
+  return {rh.hit.geomID[lane], rh.hit.primID[lane], rh.hit.instID[0][lane], rh.hit.u[lane], rh.hit.v[lane],
+          rh.ray.tfar[lane]};
+}
+
 // Lanes [0, n) of an eight-wide packet hold `rays`, with ray id = lane; the other lanes are
 // switched off in `valid` (which Embree wants aligned to 32 bytes, as the packet).
 template <typename Packet>

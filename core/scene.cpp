@@ -289,8 +289,8 @@ LeavingContext leaving_context(const Ray* rays, int n, bool coherent, bool filte
 }
 
 // Whether Embree's closest hit is the triangle the ray leaves.
-bool hits_left_triangle(const RTCHit& hit, const TriangleId& left) {
-  return left.valid() && hit.primID == left.primitive && hit.geomID == left.geometry && hit.instID[0] == left.instance;
+bool hits_left_triangle(const EmbreeHit& hit, const TriangleId& left) {
+  return left.valid() && hit.prim == left.primitive && hit.geom == left.geometry && hit.inst == left.instance;
 }
 
 }  // namespace
@@ -307,9 +307,9 @@ RTCRayHit Scene::intersect_one(const Ray& ray, bool coherent, bool filter) const
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit, bool coherent) const {
-  RTCRayHit rh = intersect_one(ray, coherent, false);
-  if (hits_left_triangle(rh.hit, ray.leaves)) rh = intersect_one(ray, coherent, true);
-  return resolve_hit(ray, rh, hit);
+  EmbreeHit found = embree_hit(intersect_one(ray, coherent, false));
+  if (hits_left_triangle(found, ray.leaves)) found = embree_hit(intersect_one(ray, coherent, true));
+  return resolve_hit(ray, found, hit);
 }
 
 bool Scene::occluded(const Ray& ray) const {
@@ -339,10 +339,11 @@ void Scene::intersect8(const Ray* rays, int n, SurfaceHit* hits, bool* found, bo
   fill_packet(rh, valid, rays, n);
   rtcIntersect8(valid, top_, &c.context, &rh);
   for (int k = 0; k < n; ++k) {
-    const RTCRayHit one = rtcGetRayHitFromRayHitN(reinterpret_cast<RTCRayHitN*>(&rh), kPacketSize, unsigned(k));
-    found[k] = hits_left_triangle(one.hit, rays[k].leaves)
-                   ? resolve_hit(rays[k], intersect_one(rays[k], coherent, true), hits[k])
-                   : resolve_hit(rays[k], one, hits[k]);
+    const EmbreeHit one = embree_hit(rh, k);
+    found[k] = resolve_hit(rays[k],
+                           hits_left_triangle(one, rays[k].leaves) ? embree_hit(intersect_one(rays[k], coherent, true))
+                                                                   : one,
+                           hits[k]);
   }
 }
 
@@ -422,28 +423,20 @@ void Scene::occluded_past_sheets(const Ray* rays, int n, bool* blocked, SheetsCr
 }
 
 void Scene::sheet_hit(const Ray& ray, const SheetsCrossed::Crossing& crossed, SurfaceHit& hit) const {
-  RTCRayHit rh = to_embree(ray);
-  rh.ray.tfar = crossed.t;
-  rh.hit.geomID = crossed.geom;
-  rh.hit.primID = crossed.prim;
-  rh.hit.instID[0] = crossed.inst;
-  rh.hit.u = crossed.u;
-  rh.hit.v = crossed.v;
-  resolve_hit(ray, rh, hit);
+  resolve_hit(ray, {crossed.geom, crossed.prim, crossed.inst, crossed.u, crossed.v, crossed.t}, hit);
 }
 
-bool Scene::resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  hit.t = rh.ray.tfar;
-  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+bool Scene::resolve_hit(const Ray& ray, const EmbreeHit& found, SurfaceHit& hit) const {
+  if (found.geom == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = found.t;
+  if (found.inst != RTC_INVALID_GEOMETRY_ID) {
     // An instanced mesh: Embree's geomID is the primitive within the mesh.
-    reconstruct_triangle_hit(hit_primitive(top_geometries_[rh.hit.instID[0]].instance, static_cast<int>(rh.hit.geomID),
-                                           nullptr),
-                             rh, hit);
-  } else if (rh.hit.geomID == sphere_geom_id_) {
-    reconstruct_sphere_hit(ray, rh, hit);
+    reconstruct_triangle_hit(
+        hit_primitive(top_geometries_[found.inst].instance, static_cast<int>(found.geom), nullptr), ray, found, hit);
+  } else if (found.geom == sphere_geom_id_) {
+    reconstruct_sphere_hit(ray, found, hit);
   } else {
-    reconstruct_triangle_hit(top_geometries_[rh.hit.geomID].baked, rh, hit);
+    reconstruct_triangle_hit(top_geometries_[found.geom].baked, ray, found, hit);
   }
   return true;
 }
@@ -460,14 +453,15 @@ Scene::HitPrimitive Scene::hit_primitive(int instance, int primitive, const Vec3
   return h;
 }
 
-void Scene::reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit& rh, SurfaceHit& hit) const {
+void Scene::reconstruct_triangle_hit(const HitPrimitive& source, const Ray& ray, const EmbreeHit& found,
+                                     SurfaceHit& hit) const {
   const PrimitiveDesc& prim = *source.prim;
   const Transform* xf = source.object_to_world;
   const bool world_space = !xf;  // baked meshes need no transform
   const float handedness = xf && xf->flips_handedness() ? -1.0f : 1.0f;
   const Vec3* face_normals = source.face_normals;
-  const uint32_t* idx = &prim.indices[3 * size_t(rh.hit.primID)];
-  const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+  const uint32_t* idx = &prim.indices[3 * size_t(found.prim)];
+  const float b1 = found.u, b2 = found.v, b0 = 1.0f - b1 - b2;
 
   const Vec3 p0 = world_space ? prim.positions[idx[0]] : xf->point(prim.positions[idx[0]]);
   const Vec3 p1 = world_space ? prim.positions[idx[1]] : xf->point(prim.positions[idx[1]]);
@@ -476,12 +470,12 @@ void Scene::reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit
   hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kHitRelativeError;
 
   // glTF 2.0 §3.7.4: a negative determinant makes the front face clockwise.
-  const Vec3 ng = face_normals ? face_normals[rh.hit.primID] : face_normal(p0, p1, p2).normal * handedness;
+  const Vec3 ng = face_normals ? face_normals[found.prim] : face_normal(p0, p1, p2).normal * handedness;
   if (ng != Vec3(0.0f)) {
     hit.ng = ng;
   } else {
     // Degenerate in float after the transform: face the incoming ray.
-    hit.ng = normalize(-Vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
+    hit.ng = normalize(-ray.dir);
   }
 
   hit.ns = hit.ng;
@@ -531,12 +525,12 @@ void Scene::reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit
   }
   hit.material = prim.material;
   hit.object = source.instance;
-  hit.triangle = {rh.hit.instID[0], rh.hit.geomID, rh.hit.primID};
-  hit.emitter = source.emitters ? source.emitters[rh.hit.primID] : -1;
+  hit.triangle = {found.inst, found.geom, found.prim};
+  hit.emitter = source.emitters ? source.emitters[found.prim] : -1;
 }
 
-void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const {
-  const SphereDesc& s = desc_.spheres[rh.hit.primID];
+void Scene::reconstruct_sphere_hit(const Ray& ray, const EmbreeHit& found, SurfaceHit& hit) const {
+  const SphereDesc& s = desc_.spheres[found.prim];
   // Re-project onto the sphere: o + t d carries the error of t; the direction from the centre
   // does not drift off the surface. All in double, so a small sphere far from the ray origin keeps
   // its precision, and from the root solved again: Embree hands t back as a float, whose rounding
@@ -574,9 +568,9 @@ void Scene::reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceH
   hit.tangent = length_squared(t) > 0 ? normalize(t) : Vec3(1, 0, 0);
   hit.tangent_sign = 1.0f;
   hit.material = s.material;
-  hit.object = static_cast<int>(desc_.instances.size() + rh.hit.primID);
+  hit.object = static_cast<int>(desc_.instances.size() + found.prim);
   hit.triangle = {};  // a ray may meet a sphere twice
-  hit.emitter = emitters_.sphere_emitter(static_cast<int>(rh.hit.primID));
+  hit.emitter = emitters_.sphere_emitter(static_cast<int>(found.prim));
 }
 
 }  // namespace prism

@@ -126,7 +126,7 @@ class Scene {
   // Whether Embree's hit (geomID, instID) is on a thin sheet's triangle.
   bool is_sheet_hit(unsigned geom, unsigned inst) const;
   // Fills `hit` from Embree's answer for `ray`; false when the ray hit nothing.
-  bool resolve_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
+  bool resolve_hit(const Ray& ray, const EmbreeHit& found, SurfaceHit& hit) const;
   // Embree's closest hit for one ray, with or without the filter that skips the triangle it leaves.
   RTCRayHit intersect_one(const Ray& ray, bool coherent, bool filter) const;
   // One packet of n <= kPacketSize rays.
@@ -136,8 +136,9 @@ class Scene {
   void occluded8(const Ray* rays, int n, bool* occluded, RTCIntersectContext* context) const;
   // Primitive `primitive` of instance `instance`, looked up; face_normals as in HitPrimitive.
   HitPrimitive hit_primitive(int instance, int primitive, const Vec3* face_normals) const;
-  void reconstruct_triangle_hit(const HitPrimitive& source, const RTCRayHit& rh, SurfaceHit& hit) const;
-  void reconstruct_sphere_hit(const Ray& ray, const RTCRayHit& rh, SurfaceHit& hit) const;
+  void reconstruct_triangle_hit(const HitPrimitive& source, const Ray& ray, const EmbreeHit& found,
+                                SurfaceHit& hit) const;
+  void reconstruct_sphere_hit(const Ray& ray, const EmbreeHit& found, SurfaceHit& hit) const;
 
   SceneDesc desc_;
   Vec3 origin_{0.0f};

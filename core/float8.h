@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "core/float4.h"
 
@@ -62,6 +63,27 @@ struct Mask8 {
   for (int k = 0; k < 8; ++k) r.v[k] = std::sqrt(a.v[k]);
   return r;
 #endif
+}
+
+// Eight records' floats [offset, offset + 8) turned into rows of lanes: lane k of rows[j] is
+// records[k][offset + j]. An 8x8 transpose in three rounds of shuffles.
+[[gnu::always_inline]] inline void transpose(const float* const* records, int offset, Float8Lanes (&rows)[8]) {
+  Float8Lanes a[8], t[8], u[8];
+  for (int k = 0; k < 8; ++k) std::memcpy(&a[k], records[k] + offset, sizeof(Float8Lanes));
+  for (int k = 0; k < 8; k += 2) {  // interleave lane pairs: fields (0, 1, 4, 5) and (2, 3, 6, 7)
+    t[k] = __builtin_shufflevector(a[k], a[k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    t[k + 1] = __builtin_shufflevector(a[k], a[k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int k = 0; k < 8; k += 4) {  // then lane quads: one field per 128-bit half
+    for (int h = 0; h < 2; ++h) {
+      u[k + 2 * h] = __builtin_shufflevector(t[k + h], t[k + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[k + 2 * h + 1] = __builtin_shufflevector(t[k + h], t[k + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  }
+  for (int j = 0; j < 4; ++j) {  // the halves of lanes 0-3 and 4-7 joined
+    rows[j] = __builtin_shufflevector(u[j], u[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    rows[j + 4] = __builtin_shufflevector(u[j], u[j + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+  }
 }
 
 }  // namespace prism

@@ -403,7 +403,7 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   EXPECT_GT(in_plane, 100);
 }
 
-// lanes::transpose turns eight records into rows of lanes: lane k of row j is record k's float j.
+// transpose (core/float8.h) turns eight records into rows of lanes: lane k of row j is record k's float j.
 TEST(Lanes, TransposeTurnsRecordsIntoRows) {
   float records[lanes::kLanes][24];
   const float* pointers[lanes::kLanes];
@@ -413,7 +413,7 @@ TEST(Lanes, TransposeTurnsRecordsIntoRows) {
   }
   for (int offset = 0; offset < 24; offset += 8) {
     lanes::F8 rows[8];
-    lanes::transpose(pointers, offset, rows);
+    transpose(pointers, offset, rows);
     for (int j = 0; j < 8; ++j)
       for (int k = 0; k < lanes::kLanes; ++k)
         ASSERT_EQ(rows[j][k], pointers[k][offset + j]) << "offset " << offset << " row " << j << " lane " << k;

@@ -1,4 +1,4 @@
-// LaneRows: the fields of up to 32 vertices' requests to a SIMD kernel, each field a row of lanes.
+// LaneRows: the fields of up to 64 vertices' requests to a SIMD kernel, each field a row of lanes.
 #pragma once
 
 #include <algorithm>
@@ -12,7 +12,7 @@ namespace prism {
 template <int kRows>
 class LaneRows {
  public:
-  static constexpr int kLanes = 32;
+  static constexpr int kLanes = 64;  // Integrator::kPathsInLockstep
 
   int size() const { return size_; }
   void clear() { size_ = 0; }

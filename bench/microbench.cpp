@@ -370,11 +370,11 @@ void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind
 // Raw Embree in packets of 8 and in streams of 64 consecutive rays of the workload (camera rays
 // run along image rows and shadow rays follow them, so neighbours are coherent; bounce rays are
 // not). Items are rays. Against ray_benchmark's raw figures this is what packet tracing buys.
-enum class Batch { Packet8, Stream64 };
+enum class Batch { Packet8, Packet16, Stream64 };
 
 void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKind kind, Batch batch) {
   const bench::BenchScene& b = bench::bench_scene(scene_path);
-  const unsigned n = batch == Batch::Packet8 ? 8 : 64;
+  const unsigned n = batch == Batch::Packet8 ? 8 : batch == Batch::Packet16 ? 16 : 64;
   const std::vector<Ray>* workload = workload_rays(state, b, kind, n);
   if (!workload) return;
   const std::vector<Ray>& rays = *workload;
@@ -386,6 +386,9 @@ void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKin
     if (++i == batches) i = 0;
     if (batch == Batch::Packet8)
       benchmark::DoNotOptimize(kind == RayKind::Shadow ? bench::raw_occluded8(b.raw, r, coherent) : bench::raw_intersect8(b.raw, r, coherent));
+    else if (batch == Batch::Packet16)
+      benchmark::DoNotOptimize(kind == RayKind::Shadow ? bench::raw_occluded16(b.raw, r, coherent)
+                                                       : bench::raw_intersect16(b.raw, r, coherent));
     else
       benchmark::DoNotOptimize(kind == RayKind::Shadow ? bench::raw_occluded_stream(b.raw, r, n, coherent)
                                                        : bench::raw_intersect_stream(b.raw, r, n, coherent));
@@ -403,6 +406,9 @@ void ray_batch_benchmark(benchmark::State& state, const char* scene_path, RayKin
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_camera_raw8, path, RayKind::Camera, Batch::Packet8)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_bounce_raw8, path, RayKind::Bounce, Batch::Packet8)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_shadow_raw8, path, RayKind::Shadow, Batch::Packet8)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_camera_raw16, path, RayKind::Camera, Batch::Packet16)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_bounce_raw16, path, RayKind::Bounce, Batch::Packet16)->UseRealTime(); \
+  BENCHMARK_CAPTURE(ray_batch_benchmark, name##_shadow_raw16, path, RayKind::Shadow, Batch::Packet16)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_camera_stream64, path, RayKind::Camera, Batch::Stream64)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_bounce_stream64, path, RayKind::Bounce, Batch::Stream64)->UseRealTime(); \
   BENCHMARK_CAPTURE(ray_batch_benchmark, name##_shadow_stream64, path, RayKind::Shadow, Batch::Stream64)->UseRealTime();

@@ -133,6 +133,29 @@ int raw_occluded8(RTCScene scene, const Ray* rays, bool coherent) {
   return hits;
 }
 
+int raw_intersect16(RTCScene scene, const Ray* rays, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  fill_packet_lanes(rh.ray, valid, rays, 16);
+  for (int k = 0; k < 16; ++k) rh.hit.geomID[k] = rh.hit.primID[k] = rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect16(valid, scene, &context, &rh);
+  int hits = 0;
+  for (int k = 0; k < 16; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  return hits;
+}
+
+int raw_occluded16(RTCScene scene, const Ray* rays, bool coherent) {
+  RTCIntersectContext context = context_for(coherent);
+  alignas(64) RTCRay16 r;
+  alignas(64) int valid[16];
+  fill_packet_lanes(r, valid, rays, 16);
+  rtcOccluded16(valid, scene, &context, &r);
+  int hits = 0;
+  for (int k = 0; k < 16; ++k) hits += r.tfar[k] < 0;
+  return hits;
+}
+
 int raw_intersect_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent) {
   RTCIntersectContext context = context_for(coherent);
   thread_local std::vector<RTCRayHit> rh;

@@ -37,6 +37,9 @@ bool raw_occluded(RTCScene scene, const Ray& ray);
 // design that traces paths in packets could gain. Returns how many of the eight rays hit.
 int raw_intersect8(RTCScene scene, const Ray* rays, bool coherent);
 int raw_occluded8(RTCScene scene, const Ray* rays, bool coherent);
+// Sixteen at a time (rtcIntersect16 / rtcOccluded16), the width of Embree's AVX-512 kernels.
+int raw_intersect16(RTCScene scene, const Ray* rays, bool coherent);
+int raw_occluded16(RTCScene scene, const Ray* rays, bool coherent);
 // A stream of n rays in one call (rtcIntersect1M / rtcOccluded1M), Embree's own reordering.
 int raw_intersect_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent);
 int raw_occluded_stream(RTCScene scene, const Ray* rays, unsigned n, bool coherent);

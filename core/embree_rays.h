@@ -55,11 +55,11 @@ inline EmbreeHit embree_hit(const RTCRayHit8& rh, int lane) {
 // Cornell box's packets took 59M of its 2.13G instructions lane by lane, 28M so (PERFORMANCE.md).
 void fill_packet_avx2(RTCRay8& p, int (&valid)[kEmbreePacketSize], const Ray* rays, int n);
 
-// Lanes [0, n) of an eight-wide packet hold `rays`, with ray id = lane; the other lanes are
-// switched off in `valid` (which Embree wants aligned to 32 bytes, as the packet) and repeat ray 0.
-inline void fill_packet(RTCRay8& p, int (&valid)[kEmbreePacketSize], const Ray* rays, int n) {
-  if (cpu_has_avx2()) return fill_packet_avx2(p, valid, rays, n);
-  for (int k = 0; k < kEmbreePacketSize; ++k) {
+// Lanes [0, n) of a W-wide packet hold `rays`, with ray id = lane; the other lanes are switched
+// off in `valid` (which Embree wants aligned as the packet) and repeat ray 0. One lane at a time.
+template <int W, typename Packet>
+void fill_packet_lanes(Packet& p, int (&valid)[W], const Ray* rays, int n) {
+  for (int k = 0; k < W; ++k) {
     const Ray& r = rays[k < n ? k : 0];
     valid[k] = k < n ? -1 : 0;
     p.org_x[k] = r.origin.x, p.org_y[k] = r.origin.y, p.org_z[k] = r.origin.z;
@@ -71,6 +71,12 @@ inline void fill_packet(RTCRay8& p, int (&valid)[kEmbreePacketSize], const Ray* 
     p.id[k] = unsigned(k);
     p.flags[k] = 0;
   }
+}
+
+// The same for prism's eight-wide packets, by a transpose where the CPU has AVX2.
+inline void fill_packet(RTCRay8& p, int (&valid)[kEmbreePacketSize], const Ray* rays, int n) {
+  if (cpu_has_avx2()) return fill_packet_avx2(p, valid, rays, n);
+  fill_packet_lanes(p, valid, rays, n);
 }
 
 // The same for a packet with hits, each lane's hit cleared (no geometry, primitive or instance).

@@ -6,11 +6,14 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "core/arctangent.h"
+#include "core/cpu_features.h"
+#include "core/embree_rays.h"
 #include "core/pcg32.h"
 #include "core/sobol_sampler.h"
 #include "integrators/lane_spherical_triangle.h"
@@ -401,6 +404,29 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
   EXPECT_GT(bent, 100);
   EXPECT_GT(in_plane, 100);
+}
+
+// fill_packet_avx2 writes every byte of the packet and its valid mask as the lane-by-lane form
+// does, for each number of rays a packet may hold (lanes past n repeat ray 0).
+TEST(PacketQueries, TransposedFillIsTheLaneByLaneOne) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  Pcg32 rng(71, 72);
+  Ray rays[kEmbreePacketSize];
+  for (Ray& r : rays) {
+    r = Ray({rng.next_float(), -rng.next_float(), 3 * rng.next_float()}, {rng.next_float() - 0.5f, 1, -2},
+            rng.next_float(), 10 + rng.next_float(), {1, 2, 3});
+    r.cone_width = 0.25f;
+  }
+  for (int n = 1; n <= kEmbreePacketSize; ++n) {
+    alignas(32) RTCRay8 transposed, lanes;
+    alignas(32) int valid_transposed[kEmbreePacketSize], valid_lanes[kEmbreePacketSize];
+    std::memset(&transposed, 0xab, sizeof transposed);  // any byte left unwritten shows
+    std::memset(&lanes, 0xcd, sizeof lanes);
+    fill_packet_avx2(transposed, valid_transposed, rays, n);
+    fill_packet_lanes(lanes, valid_lanes, rays, n);
+    EXPECT_EQ(std::memcmp(&transposed, &lanes, sizeof lanes), 0) << n << " rays";
+    EXPECT_EQ(std::memcmp(valid_transposed, valid_lanes, sizeof valid_lanes), 0) << n << " rays";
+  }
 }
 
 // transpose (core/float8.h) turns eight records into rows of lanes: lane k of row j is record k's float j.

@@ -367,7 +367,7 @@ void ray_benchmark(benchmark::State& state, const char* scene_path, RayKind kind
   state.SetItemsProcessed(int64_t(state.iterations()));
 }
 
-// Raw Embree in packets of 8 and in streams of 64 consecutive rays of the workload (camera rays
+// Raw Embree in packets of 8 and 16 and in streams of 64 consecutive rays of the workload (camera rays
 // run along image rows and shadow rays follow them, so neighbours are coherent; bounce rays are
 // not). Items are rays. Against ray_benchmark's raw figures this is what packet tracing buys.
 enum class Batch { Packet8, Packet16, Stream64 };

@@ -32,8 +32,8 @@ inline RTCRayHit to_embree(const Ray& ray) {
 }
 
 // What a closest-hit query answered, as Scene::resolve_hit reads it: read field by field from the
-// query's layout, not copied whole (rtcGetRayHitFromRayHitN copies every field of a packet's lane,
-// and the hit's reconstruction then stalled on loading u and v together from two narrow stores).
+// query's layout, not copied whole (rtcGetRayHitFromRayHitN copies all twenty fields of a packet's
+// lane, for the six read here).
 struct EmbreeHit {
   unsigned geom = RTC_INVALID_GEOMETRY_ID, prim = RTC_INVALID_GEOMETRY_ID, inst = RTC_INVALID_GEOMETRY_ID;
   float u = 0, v = 0;  // barycentrics of vertices 1 and 2

@@ -20,7 +20,7 @@ typedef float F32x8 __attribute__((vector_size(32)));
 // Sobol's dimension 1 of the same shuffled index, computed in the lanes from the first
 // coordinate's (reversed_sobol_dim1_in_place), so no lane leaves the vector until the end.
 __attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& s,
-                                                     float (&u)[7]) {
+                                                     VertexSamples& v) {
   U32x8 index, value0, value1;  // eight seeds from each array (unaligned loads)
   std::memcpy(&index, s.index, sizeof index);
   std::memcpy(&value0, s.value0, sizeof value0);
@@ -38,13 +38,12 @@ __attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, 
   reverse_bits_in_place(w);
   // fraction_to_float, lane by lane: the top 24 bits fit a signed lane exactly.
   const F32x8 f = __builtin_convertvector(reinterpret_cast<I32x8>(w >> 8), F32x8) * 0x1p-24f;
-  u[0] = f[0];
-  u[1] = f[1];
-  u[2] = f[5];
-  u[3] = f[2];
-  u[4] = f[3];
-  u[5] = f[6];
-  u[6] = f[4];
+  // Written straight into v: a copy through a float array cost a store and a reload per value.
+  v.light_spare = f[0];
+  v.light_point = {f[1], f[5]};
+  v.lobe = f[2];
+  v.direction = {f[3], f[6]};
+  v.roulette = f[4];
 }
 
 bool owen_sobol_vertex_available() { return cpu_has_avx2(); }

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/owen_sobol.h"
+#include "core/sampler.h"
 
 namespace prism {
 
@@ -19,9 +20,9 @@ struct SobolSeedArrays {
   const uint32_t* value1;
 };
 
-// Draws 1D, 2D, 1D, 2D, 1D, the d-th with the seeds of dimension d (0 <= d < 5) into u: the very
-// values owen_sobol_1d and owen_sobol_2d give, in that order, the seven coordinates scrambled
-// together in the lanes of one AVX2 vector. Call only where owen_sobol_vertex_available().
-void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& seeds, float (&u)[7]);
+// Draws 1D, 2D, 1D, 2D, 1D, the d-th with the seeds of dimension d (0 <= d < 5), into v's fields in
+// their order: the very values owen_sobol_1d and owen_sobol_2d give, the seven coordinates
+// scrambled together in the lanes of one AVX2 vector. Call only where owen_sobol_vertex_available().
+void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& seeds, VertexSamples& v);
 
 }  // namespace prism

@@ -44,18 +44,16 @@ class SobolSampler final : public Sampler {
   Vec2 next_2d() override { return owen_sobol_2d(reversed_index_, next_seeds()); }
   void draw_vertex(VertexSamples& v) override {
     if (!owen_sobol_vertex_available()) return Sampler::draw_vertex(v);  // one draw at a time
-    float u[7];
     const uint32_t d = dimension_;
     SobolSeedCache::Entry& e = cache_->entry(entry_);
     if (d + 5 <= e.cached) {  // the usual case: every seed from the cache, as it lies
       dimension_ += 5;
-      owen_sobol_vertex(reversed_index_, {e.index + d, e.value0 + d, e.value1 + d}, u);
+      owen_sobol_vertex(reversed_index_, {e.index + d, e.value0 + d, e.value1 + d}, v);
     } else {
       SeedRun run;
       for (int k = 0; k < 5; ++k) run.set(k, next_seeds());  // in order, filling the cache
-      owen_sobol_vertex(reversed_index_, {run.index, run.value0, run.value1}, u);
+      owen_sobol_vertex(reversed_index_, {run.index, run.value0, run.value1}, v);
     }
-    v = {u[0], {u[1], u[2]}, u[3], {u[4], u[5]}, u[6]};
   }
 
  private:

@@ -410,23 +410,35 @@ float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p
 // spent there, and the pdf is 0 to match.
 bool Emitters::faces(const Emitter& e, float plane_distance) { return e.double_sided || plane_distance > 0; }
 
-// Half A's spherical triangle and, for a quad, half B's, seen from ref: the quad's solid angle is
-// theirs together, and a direction is drawn in one of them in proportion to its share.
+// Half A's corners and, for a quad, half B's, seen from ref, and the solid angles of the halves:
+// the quad's solid angle is theirs together, and a direction is drawn in one of them in proportion
+// to its share. Only the half drawn in is made a SphericalTriangle (half()); a density needs none.
 struct Emitters::SolidAngleView {
   SolidAngleView(const Emitter& e, const Vec3& ref)
       : SolidAngleView(e, ref, SphericalTriangle::see(ref, e.p0), SphericalTriangle::see(ref, e.p1),
                        SphericalTriangle::see(ref, e.p2)) {}
   SolidAngleView(const Emitter& e, const Vec3& ref, const SphericalTriangle::Corner& c0,
                  const SphericalTriangle::Corner& c1, const SphericalTriangle::Corner& c2)
-      : a(ref, c0, c1, c2) {
-    if (e.quad) b.emplace(ref, c1, SphericalTriangle::see(ref, e.p3), c2);
-    solid_angle = a.solid_angle() + (b ? b->solid_angle() : 0.0f);
+      : ref(ref), corners{c0, c1, c2, {}}, quad(e.quad) {
+    solid_angle_a = SphericalTriangle::solid_angle(c0, c1, c2);
+    if (quad) {
+      corners[3] = SphericalTriangle::see(ref, e.p3);
+      solid_angle_b = SphericalTriangle::solid_angle(c1, corners[3], c2);
+    }
+    solid_angle = solid_angle_a + solid_angle_b;
   }
   // Solid angles under kMinSolidAngle or over kMaxSolidAngle are left to area sampling.
   bool pays() const { return solid_angle >= kMinSolidAngle && solid_angle <= kMaxSolidAngle; }
+  // Half A (0) or, of a quad, half B (1): (c0, c1, c2) and (c1, c3, c2), as Emitter::corner0..2 order them.
+  SphericalTriangle half(int h) const {
+    return h == 0 ? SphericalTriangle(ref, corners[0], corners[1], corners[2], solid_angle_a)
+                  : SphericalTriangle(ref, corners[1], corners[3], corners[2], solid_angle_b);
+  }
 
-  SphericalTriangle a;
-  std::optional<SphericalTriangle> b;
+  Vec3 ref;
+  SphericalTriangle::Corner corners[4];
+  bool quad;
+  float solid_angle_a = 0, solid_angle_b = 0;
   float solid_angle = 0;
 };
 
@@ -445,10 +457,10 @@ EmitterSample Emitters::sample_triangle(const Emitter& e, const Vec3& ref, Vec2 
     const SolidAngleView view(e, ref);
     if (view.pays()) {
       // u.x chooses the half and, rescaled within its share, places the point (as in sample()).
-      const float share_a = view.a.solid_angle() / view.solid_angle;
-      const bool in_b = view.b && u.x >= share_a;
-      if (view.b) u.x = std::min(in_b ? (u.x - share_a) / (1 - share_a) : u.x / share_a, kOneMinusEpsilon);
-      const std::optional<Barycentrics> b = (in_b ? *view.b : view.a).sample(u);
+      const float share_a = view.solid_angle_a / view.solid_angle;
+      const bool in_b = view.quad && u.x >= share_a;
+      if (view.quad) u.x = std::min(in_b ? (u.x - share_a) / (1 - share_a) : u.x / share_a, kOneMinusEpsilon);
+      const std::optional<Barycentrics> b = view.half(in_b ? 1 : 0).sample(u);
       if (!b) return {};
       EmitterSample s = triangle_point(e, in_b ? 1 : 0, *b);
       s.pdf = 1.0f / view.solid_angle;

@@ -29,16 +29,25 @@ bool crosses(const Vec3& o, const Vec3& w, const Vec3& p0, const Vec3& p1, const
 }  // namespace
 
 EnvironmentPortals::EnvironmentPortals(const SceneDesc& desc) {
+  // A corner's index, added where no earlier triangle has the very same point.
+  const auto corner = [&](const Vec3& p) {
+    for (size_t i = 0; i < corners_.size(); ++i)
+      if (corners_[i] == p) return int(i);
+    corners_.push_back(p);
+    return int(corners_.size() - 1);
+  };
   for (const InstanceDesc& inst : desc.instances) {
     for (const PrimitiveDesc& prim : desc.meshes[size_t(inst.mesh)].primitives) {
       if (!desc.material(prim.material).is_thin_sheet()) continue;
       for (size_t t = 0; t < prim.triangle_count(); ++t) {
         if (triangles_.size() == size_t(kMaxTriangles)) {
           triangles_.clear();
+          corners_.clear();
           return;
         }
-        triangles_.push_back(
-            {world_corner(inst, prim, t, 0), world_corner(inst, prim, t, 1), world_corner(inst, prim, t, 2)});
+        const int c0 = corner(world_corner(inst, prim, t, 0));
+        const int c1 = corner(world_corner(inst, prim, t, 1));
+        triangles_.push_back({c0, c1, corner(world_corner(inst, prim, t, 2))});
       }
     }
   }
@@ -46,11 +55,12 @@ EnvironmentPortals::EnvironmentPortals(const SceneDesc& desc) {
 
 EnvironmentPortals::View EnvironmentPortals::view(const Vec3& ref) const {
   View v;
+  SphericalTriangle::Corner* seen = reinterpret_cast<SphericalTriangle::Corner*>(v.corners);
+  for (size_t i = 0; i < corners_.size(); ++i)
+    new (seen + i) SphericalTriangle::Corner(SphericalTriangle::see(ref, corners_[i]));
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const Triangle& t = triangles_[i];
-    const SphericalTriangle* seen =
-        new (v.triangles + i * sizeof(SphericalTriangle)) SphericalTriangle(ref, t.p0, t.p1, t.p2);
-    const float omega = seen->solid_angle();
+    const float omega = SphericalTriangle::solid_angle(v.corner(t.c0), v.corner(t.c1), v.corner(t.c2));
     if (omega >= kMinSolidAngle && std::isfinite(omega)) {
       v.solid_angle[i] = omega;
       v.total += omega;
@@ -73,9 +83,10 @@ std::optional<EnvironmentPortals::Sample> EnvironmentPortals::sample(const View&
   if (chosen == triangles_.size()) return std::nullopt;
   u.x = std::fmin(std::fmax((target - start) / view.solid_angle[chosen], 0.0f), 0x1.fffffep-1f);
   const Triangle& t = triangles_[chosen];
-  const std::optional<Barycentrics> b = view.triangle(chosen).sample(u);
+  const SphericalTriangle::Corner &c0 = view.corner(t.c0), &c1 = view.corner(t.c1), &c2 = view.corner(t.c2);
+  const std::optional<Barycentrics> b = SphericalTriangle(ref, c0, c1, c2, view.solid_angle[chosen]).sample(u);
   if (!b) return std::nullopt;
-  const Vec3 d = t.p0 * b->b0 + t.p1 * b->b1 + t.p2 * b->b2 - ref;
+  const Vec3 d = c0.p * b->b0 + c1.p * b->b1 + c2.p * b->b2 - ref;
   const float len = length(d);
   if (!(len > 0)) return std::nullopt;
   return Sample{d / len, int(chosen)};
@@ -86,7 +97,9 @@ float EnvironmentPortals::pdf(const View& view, const Vec3& ref, const Vec3& w, 
   int crossed = 0;
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const Triangle& t = triangles_[i];
-    if (view.solid_angle[i] > 0 && (int(i) == drawn_in || crosses(ref, w, t.p0, t.p1, t.p2))) ++crossed;
+    if (view.solid_angle[i] > 0 &&
+        (int(i) == drawn_in || crosses(ref, w, corners_[size_t(t.c0)], corners_[size_t(t.c1)], corners_[size_t(t.c2)])))
+      ++crossed;
   }
   return float(crossed) / view.total;
 }

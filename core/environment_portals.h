@@ -23,6 +23,7 @@ class EnvironmentPortals {
  public:
   // Larger counts are likely glass objects rather than windows, and every vertex pays per triangle.
   static constexpr int kMaxTriangles = 32;
+  static constexpr int kMaxCorners = 3 * kMaxTriangles;
 
   EnvironmentPortals() = default;
   // The world-space triangles of the scene's thin-sheet primitives (MaterialDesc::is_thin_sheet),
@@ -32,16 +33,16 @@ class EnvironmentPortals {
   bool empty() const { return triangles_.empty(); }
   size_t size() const { return triangles_.size(); }
 
-  // The portals seen from one point: each triangle's solid angle and their sum.
+  // The portals seen from one point: each corner as seen from it (a corner that triangles share,
+  // as a pane's two halves do, is seen once), each triangle's solid angle and their sum.
   struct View {
     float solid_angle[kMaxTriangles] = {};
     float total = 0;  // 0: no portal subtends a usable solid angle from here
-    // The spherical triangle of each portal triangle, kept so that sampling one does not build it
-    // again (raw storage: zeroing all 32 would cost more; they need no destructor).
-    const SphericalTriangle& triangle(size_t i) const {
-      return *std::launder(reinterpret_cast<const SphericalTriangle*>(triangles) + i);
+    // Raw storage, set for the portals' corners only: zeroing all of it would cost more.
+    const SphericalTriangle::Corner& corner(size_t i) const {
+      return *std::launder(reinterpret_cast<const SphericalTriangle::Corner*>(corners) + i);
     }
-    alignas(SphericalTriangle) unsigned char triangles[kMaxTriangles * sizeof(SphericalTriangle)];
+    alignas(SphericalTriangle::Corner) unsigned char corners[kMaxCorners * sizeof(SphericalTriangle::Corner)];
   };
   View view(const Vec3& ref) const;
   // A direction from ref drawn with density pdf(), and the triangle it was drawn in; nullopt when
@@ -50,7 +51,8 @@ class EnvironmentPortals {
     Vec3 w;
     int triangle = -1;
   };
-  static_assert(std::is_trivially_copyable_v<SphericalTriangle> && std::is_trivially_destructible_v<SphericalTriangle>);
+  static_assert(std::is_trivially_copyable_v<SphericalTriangle::Corner> &&
+                std::is_trivially_destructible_v<SphericalTriangle::Corner>);
   std::optional<Sample> sample(const View& view, const Vec3& ref, Vec2 u) const;
   // Density (per steradian) of sample() drawing unit direction w from ref. drawn_in, the triangle
   // a sample came from, always counts: rounding can put its direction a hair outside its edges.
@@ -58,8 +60,9 @@ class EnvironmentPortals {
 
  private:
   struct Triangle {
-    Vec3 p0, p1, p2;
+    int c0, c1, c2;  // in corners_
   };
+  std::vector<Vec3> corners_;  // each point once
   std::vector<Triangle> triangles_;
 };
 

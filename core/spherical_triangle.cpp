@@ -11,12 +11,39 @@ namespace prism {
 SphericalTriangle::SphericalTriangle(const Vec3& ref, const Vec3& p0, const Vec3& p1, const Vec3& p2)
     : SphericalTriangle(ref, see(ref, p0), see(ref, p1), see(ref, p2)) {}
 
+// The triple product of the corner directions is d0 . (e1 x e2) / (l0 l1 l2): no cancellation
+// between the long vectors of a far, small triangle. |e1| / l1 <= 1 + l0 / l1, so each factor
+// stays in range unless the distances differ by ~1e19.
+float SphericalTriangle::triple_product(const Corner& c0, const Corner& c1, const Corner& c2) {
+  return dot(c0.dir, cross((c1.p - c0.p) * c1.inverse_distance, (c2.p - c0.p) * c2.inverse_distance));
+}
+
+// Van Oosterom and Strackee (IEEE TBME 1983): tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
+float SphericalTriangle::solid_angle_from(float det, float ab, float bc, float ca) {
+  const float denominator = 1.0f + ab + bc + ca;
+  const float omega = 2.0f * atan2_fast(std::abs(det), denominator);
+  return std::isfinite(omega) ? omega : 0.0f;
+}
+
+float SphericalTriangle::solid_angle(const Corner& c0, const Corner& c1, const Corner& c2) {
+  if (!(c0.distance > 0 && c1.distance > 0 && c2.distance > 0)) return 0;  // ref on a corner
+  return solid_angle_from(triple_product(c0, c1, c2), dot(c0.dir, c1.dir), dot(c1.dir, c2.dir), dot(c2.dir, c0.dir));
+}
+
 // Every vector is scaled by reciprocals of single distances (Corner), never of a product of them:
 // the product of three distances overflows a float beyond ~1e12 and underflows below ~1e-12.
 SphericalTriangle::SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2) {
+  set(ref, c0, c1, c2, -1.0f);
+}
+
+SphericalTriangle::SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2,
+                                     float known_solid_angle) {
+  set(ref, c0, c1, c2, known_solid_angle);
+}
+
+void SphericalTriangle::set(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2, float known) {
   const float l0 = c0.distance, l1 = c1.distance, l2 = c2.distance;
   if (!(l0 > 0 && l1 > 0 && l2 > 0)) return;  // ref on a corner
-  const float r1 = c1.inverse_distance, r2 = c2.inverse_distance;
   a_ = c0.dir;
   b_ = c1.dir;
   c_ = c2.dir;
@@ -27,15 +54,9 @@ SphericalTriangle::SphericalTriangle(const Vec3& ref, const Corner& c0, const Co
   e1_ = e1 * scale;
   e2_ = e2 * scale;
   o_ = (ref - c0.p) * scale;
-  // The triple product of the corner directions is d0 . (e1 x e2) / (l0 l1 l2): no cancellation
-  // between the long vectors of a far, small triangle. |e1| / l1 <= 1 + l0 / l1, so each factor
-  // stays in range unless the distances differ by ~1e19.
-  det_ = dot(a_, cross(e1 * r1, e2 * r2));
-  // Van Oosterom and Strackee (IEEE TBME 1983): tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
+  det_ = triple_product(c0, c1, c2);
   const float ab = dot(a_, b_), bc = dot(b_, c_), ca = dot(c_, a_);
-  const float denominator = 1.0f + ab + bc + ca;
-  solid_angle_ = 2.0f * atan2_fast(std::abs(det_), denominator);
-  if (!std::isfinite(solid_angle_)) solid_angle_ = 0;
+  solid_angle_ = known >= 0 ? known : solid_angle_from(det_, ab, bc, ca);
   // sample() divides by 1 + a.b and draws along the arcs from a to c and from b: in a triangle that
   // fills nearly a hemisphere two corners are seen nearly opposite, and that pair must be (b, c),
   // the one it never uses (with a and b opposite, an emitter 10000 wide seen from 2 away drew its

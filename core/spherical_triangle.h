@@ -35,6 +35,13 @@ class SphericalTriangle {
   }
   SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2);
 
+  // The solid angle alone, the very value the constructor gives for these corners, without the
+  // rest of its work: what a density or the choice among triangles needs.
+  static float solid_angle(const Corner& c0, const Corner& c1, const Corner& c2);
+  // The triangle whose solid_angle(c0, c1, c2) is known already: the constructor without the
+  // arctangent, the costliest of its steps.
+  SphericalTriangle(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2, float known_solid_angle);
+
   // Two corners seen further apart than this cosine (120 degrees), more so than the other pairs,
   // are relabelled b and c for sampling.
   static constexpr float kRelabelCos = -0.5f;
@@ -52,6 +59,13 @@ class SphericalTriangle {
   Vec3 o_;          // ref - p0, divided likewise
   float det_ = 0;   // a . (b x c) of the unit directions
   float solid_angle_ = 0;
+
+  // a . (b x c) of the corners' unit directions, and the solid angle from it and the directions'
+  // pairwise cosines: the steps the constructor and solid_angle() share.
+  static float triple_product(const Corner& c0, const Corner& c1, const Corner& c2);
+  static float solid_angle_from(float det, float ab, float bc, float ca);
+  // The constructors' work; the solid angle from the corners when `known` is negative.
+  void set(const Vec3& ref, const Corner& c0, const Corner& c1, const Corner& c2, float known);
 };
 
 }  // namespace prism

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -355,6 +356,34 @@ TEST(SphericalTriangle, SolidAngleMatchesClosedForms) {
   EXPECT_NEAR(far.solid_angle(), 0.5 * side * side / (double(d) * d), 1e-3 * 0.5 * side * side / (double(d) * d));
   // In the triangle's plane: nothing.
   EXPECT_EQ(SphericalTriangle(Vec3(2, 2, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)).solid_angle(), 0.0f);
+}
+
+// SphericalTriangle::solid_angle is the constructor's solid angle, bit for bit, and a triangle made
+// with it known samples the very points the plain constructor's does: views that keep only the
+// solid angles (Emitters' quads, EnvironmentPortals) draw what they drew when they kept triangles.
+TEST(SphericalTriangle, SolidAngleAloneIsTheConstructorsBitForBit) {
+  Pcg32 rng(21, 22);
+  const auto point = [&](float scale) {
+    return Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f) * scale;
+  };
+  for (int i = 0; i < 20000; ++i) {
+    // Near and far, large and tiny, and now and then the reference on a corner (solid angle 0).
+    const float scale = std::ldexp(1.0f, int(rng.next_u32() % 24) - 12);
+    const Vec3 p0 = point(1), p1 = point(1), p2 = i % 1000 == 0 ? p0 : point(1);
+    const Vec3 ref = i % 997 == 0 ? p1 : point(scale);
+    const SphericalTriangle::Corner c0 = SphericalTriangle::see(ref, p0), c1 = SphericalTriangle::see(ref, p1),
+                                    c2 = SphericalTriangle::see(ref, p2);
+    const SphericalTriangle full(ref, c0, c1, c2);
+    const float omega = SphericalTriangle::solid_angle(c0, c1, c2);
+    ASSERT_EQ(std::bit_cast<uint32_t>(omega), std::bit_cast<uint32_t>(full.solid_angle())) << i;
+    const SphericalTriangle known(ref, c0, c1, c2, omega);
+    const Vec2 u{rng.next_float(), rng.next_float()};
+    const std::optional<Barycentrics> a = full.sample(u), b = known.sample(u);
+    ASSERT_EQ(a.has_value(), b.has_value()) << i;
+    if (!a) continue;
+    ASSERT_EQ(std::bit_cast<uint32_t>(a->b1), std::bit_cast<uint32_t>(b->b1)) << i;
+    ASSERT_EQ(std::bit_cast<uint32_t>(a->b2), std::bit_cast<uint32_t>(b->b2)) << i;
+  }
 }
 
 TEST(SphericalTriangle, SamplesUniformlyInSolidAngle) {

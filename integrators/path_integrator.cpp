@@ -231,8 +231,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     // No more scattering, but a straight crossing is none: next-event estimation at the last
     // vertex counted light beyond sheets, so the path must still reach it for its MIS half.
     if (!material.is_thin_sheet() || path.crossings >= kMaxSheetCrossings) return Step::kEnds;
-    const Rgb through =
-        make_bsdf(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front)).straight_through();
+    const Rgb through = straight_through(desc, hit, wo, path.media.interface_eta(material, hit.material, from_front));
     if (is_black(through)) return Step::kEnds;
     beta *= through;
     ++path.crossings;

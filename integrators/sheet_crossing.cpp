@@ -10,8 +10,8 @@ namespace prism {
 namespace {
 
 // What the sheet at `hit` lets through along unit direction dir.
-Rgb straight_through(const SceneDesc& desc, const SurfaceHit& hit, const Vec3& dir, float medium_ior) {
-  return make_bsdf(desc, hit, -dir, desc.material(hit.material).ior / medium_ior).straight_through();
+Rgb through_sheet(const SceneDesc& desc, const SurfaceHit& hit, const Vec3& dir, float medium_ior) {
+  return straight_through(desc, hit, -dir, desc.material(hit.material).ior / medium_ior);
 }
 
 }  // namespace
@@ -28,7 +28,7 @@ Rgb transmittance_through_sheets(const Scene& scene, Ray ray, float medium_ior, 
     if (!scene.intersect(ray, hit)) return tr;
     const MaterialDesc& m = desc.material(hit.material);
     if (!m.is_thin_sheet() || crossed == kMaxSheetCrossings) return {};
-    tr *= straight_through(desc, hit, dir, medium_ior);
+    tr *= through_sheet(desc, hit, dir, medium_ior);
     if (is_black(tr)) return {};
     if (unbounded) {
       ray = spawn_ray(hit, dir);
@@ -76,7 +76,7 @@ void shadow_transmittance(const Scene& scene, const Ray* rays, const float* medi
         for (int i = 0; i < c.count; ++i) {
           SurfaceHit hit;
           scene.sheet_hit(rays[k], met[i], hit);
-          tr *= straight_through(scene.desc(), hit, dir, medium_iors[k]);
+          tr *= through_sheet(scene.desc(), hit, dir, medium_iors[k]);
         }
         through[k] = tr;
       }

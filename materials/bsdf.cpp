@@ -5,27 +5,43 @@
 
 namespace prism {
 
-Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta) : diffuse_{p.base_color} {
-  const bool volume_boundary = p.transmission > 0 && !p.thin_walled;
+Bsdf::Facing Bsdf::facing(const Vec3& ns, const Vec3& ng, const Vec3& wo, bool volume_boundary) {
+  Facing f;
   const float side = dot(wo, ng);
-  valid_ = side != 0;
+  f.valid = side != 0;
   // Two-sided surfaces look the same from both faces: mirror the frame to wo's side.
   const bool mirror = !volume_boundary && side < 0;
-  ng_ = mirror ? -ng : ng;
+  f.ng = mirror ? -ng : ng;
   Vec3 n = mirror ? -ns : ns;
-  if (dot(n, ng_) < 0) n = -n;  // a shading normal facing into the surface: keep its side right
+  if (dot(n, f.ng) < 0) n = -n;  // a shading normal facing into the surface: keep its side right
   // Interpolated normals can put wo below the shading hemisphere near silhouettes although it is
   // above the surface: the BSDF would be zero there (black rims). Bend the shading normal toward
   // wo just enough that wo sits above it again, by at most what the geometry allows.
-  wo_dot_ng_ = dot(wo, ng_);
-  const float s_side = wo_dot_ng_ < 0 ? -1.0f : 1.0f;  // +1 once two-sided surfaces are mirrored
+  f.wo_dot_ng = dot(wo, f.ng);
+  const float s_side = f.wo_dot_ng < 0 ? -1.0f : 1.0f;  // +1 once two-sided surfaces are mirrored
   const Vec3 n_side = n * s_side;
   const float threshold = std::min(0.9f * std::abs(side), 0.01f);
-  if (valid_ && dot(wo, n_side) < threshold) {
+  if (f.valid && dot(wo, n_side) < threshold) {
     const Vec3 bent = n_side + wo * (threshold - dot(wo, n_side));
     if (length_squared(bent) > 0) n = normalize(bent) * s_side;
   }
-  frame_ = Frame::from_normal(n);
+  f.n = n;
+  return f;
+}
+
+DielectricBxdf Bsdf::dielectric_lobe(const SurfaceParams& p, float eta, float alpha) {
+  DielectricBxdf d(eta, alpha, p.base_color,
+                   p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume);
+  d.set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
+  return d;
+}
+
+Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta) : diffuse_{p.base_color} {
+  const Facing f = facing(ns, ng, wo, p.transmission > 0 && !p.thin_walled);
+  valid_ = f.valid;
+  ng_ = f.ng;
+  wo_dot_ng_ = f.wo_dot_ng;
+  frame_ = Frame::from_normal(f.n);
   wo_ = frame_.to_local(wo);
   if (wo_.z == 0) valid_ = false;
 
@@ -41,11 +57,9 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
   const float alpha = p.roughness * p.roughness;
   metal_.emplace(p.base_color, alpha);
-  dielectric_.emplace(eta, alpha, p.base_color,
-                      p.thin_walled ? DielectricBxdf::Mode::ThinWalled : DielectricBxdf::Mode::Volume);
+  dielectric_.emplace(dielectric_lobe(p, eta, alpha));
   coat_.emplace(eta, alpha, Rgb(1.0f), DielectricBxdf::Mode::ReflectionOnly);
   coat_->set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
-  dielectric_->set_specular(std::max(0.0f, p.specular), max(p.specular_color, Rgb(0.0f)));
   // glTF's fresnel_mix: the layer reflects F (per channel), the base below gets 1 - max(F).
   const Rgb F = m < 1 && t < 1 ? coat_->reflectance_rgb(wo_.z) : Rgb(0.0f);
   weight_[kMetal] = m;
@@ -72,9 +86,18 @@ Bsdf::Bsdf(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& w
   if (non_delta != 1) only_lobe_ = -1;
 }
 
-Rgb Bsdf::straight_through() const {
-  if (!valid_ || !dielectric_ || !(pick_[kDielectric] > 0)) return {};
-  return dielectric_->straight_transmittance(wo_.z) * weight_[kDielectric];
+// The constructor's steps as far as they bear on the dielectric lobe: the same facing and cosine,
+// the same lobe and weight. Its pick is that weight over a sum that includes it, so it is positive
+// exactly where the weight is.
+Rgb Bsdf::straight_through(const SurfaceParams& p, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta) {
+  if (lambertian_only(p, eta)) return {};  // no dielectric lobe
+  const Facing f = facing(ns, ng, wo, p.transmission > 0 && !p.thin_walled);
+  const float cos_o = dot(wo, f.n);  // the frame's local wo.z
+  if (!f.valid || cos_o == 0) return {};
+  const float m = std::clamp(p.metallic, 0.0f, 1.0f), t = std::clamp(p.transmission, 0.0f, 1.0f);
+  const float weight = (1 - m) * t;
+  if (!(weight > 0)) return {};
+  return dielectric_lobe(p, eta, p.roughness * p.roughness).straight_transmittance(cos_o) * weight;
 }
 
 bool Bsdf::lobe_is_delta(int lobe) const {

@@ -56,13 +56,25 @@ class Bsdf {
   }
   // True when no lobe transmits: every direction it scatters to stays on wo's side.
   bool reflects_only() const { return weight_[kDielectric] == 0; }
-  // What passes straight through a smooth thin-walled sheet along -wo: the weight sample()'s
-  // straight transmitted directions carry, times how often it draws them. A shadow ray may cross
-  // the sheet with this factor instead of stopping at it. Zero for every other surface.
-  Rgb straight_through() const;
+  // What passes straight through a smooth thin-walled sheet along -wo: the weight the sample()s of
+  // Bsdf(params, ns, ng, wo, eta) that go straight through carry, times how often it draws them. A
+  // shadow ray may cross the sheet with this factor instead of stopping at it. Zero for every other
+  // surface. Made without the mixture's other lobes, which it does not need.
+  static Rgb straight_through(const SurfaceParams& params, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta);
 
  private:
   enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };
+
+  // The side of the surface wo is on, and the normal the lobes' cosines are taken about there.
+  struct Facing {
+    Vec3 ng;  // the geometric normal, mirrored to wo's side on two-sided surfaces
+    Vec3 n;   // the shading normal likewise, perhaps bent toward wo
+    float wo_dot_ng = 0;
+    bool valid = false;  // wo is not in the surface's plane
+  };
+  static Facing facing(const Vec3& ns, const Vec3& ng, const Vec3& wo, bool volume_boundary);
+  // The dielectric lobe as the mixture builds it.
+  static DielectricBxdf dielectric_lobe(const SurfaceParams& p, float eta, float alpha);
 
   // The lobe's f (unweighted) and its own density of choosing wi.
   BxdfValue lobe_value(int lobe, const Vec3& wi) const;

@@ -85,4 +85,10 @@ Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, fl
   return Bsdf(surface_params(scene, m, hit.uv, hit.uv_width()), shading_normal(scene, m, hit), hit.ng, wo, eta);
 }
 
+Rgb straight_through(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta) {
+  const MaterialDesc& m = scene.material(hit.material);
+  return Bsdf::straight_through(surface_params(scene, m, hit.uv, hit.uv_width()), shading_normal(scene, m, hit),
+                                hit.ng, wo, eta);
+}
+
 }  // namespace prism

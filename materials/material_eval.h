@@ -42,5 +42,7 @@ void prefetch_textures(const SceneDesc& scene, const MaterialDesc& m, Vec2 uv, f
 
 // The BSDF at a hit, for light leaving toward wo; eta = n_back / n_front at the surface.
 Bsdf make_bsdf(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta);
+// What passes straight through the surface at a hit along -wo (Bsdf::straight_through).
+Rgb straight_through(const SceneDesc& scene, const SurfaceHit& hit, const Vec3& wo, float eta);
 
 }  // namespace prism

@@ -493,7 +493,7 @@ Emitters::Draw Emitters::triangle_draw(const std::optional<Pick>* chosen, const 
                                        float u_spare, Vec2 u, TriangleDraw& out) const {
   const std::optional<Pick> picked = chosen ? *chosen : pick(ref, ref_n, u.x);
   if (!picked) return Draw::kNothing;
-  if (picked->index >= emitters_.size()) return Draw::kOther;  // punctual or the environment
+  if (picked->index >= emitters_.size()) return Draw::kToward;  // punctual or the environment
   const Emitter& e = emitters_[picked->index];
   if (e.sphere || e.textured) return Draw::kOther;
   if (!(e.area > 0)) return Draw::kNothing;

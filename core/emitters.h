@@ -132,7 +132,8 @@ class Emitters {
   enum class Draw {
     kNothing,     // sample_light's pdf is 0: no light, or one with no area
     kOnTriangle,  // `out` holds the draw
-    kOther,       // another kind of sample: sample_light makes it
+    kToward,      // a punctual light or the environment: sample_light gives a direction toward it
+    kOther,       // another kind of sample (a sphere, a textured emitter): sample_light makes it
   };
   // Solid angles under kMinSolidAngle (a grazing view) or near 2 pi (ref almost on the triangle)
   // stay with area sampling, as in pbrt-v4, where the spherical construction loses precision.

@@ -1,6 +1,7 @@
-// LaneLightResult, lanes::direct_light: next-event estimation at Lambertian vertices toward area-drawn points, in lanes.
+// LaneLightResult, lanes::direct_light: next-event estimation at Lambertian vertices, in lanes.
 #pragma once
 
+#include <cstring>
 #include <iterator>
 #include <limits>
 
@@ -21,6 +22,25 @@ struct LaneLightResult {
 };
 
 namespace lanes {
+
+// Bsdf::evaluate for the Lambertian lobe alone (f: albedo / pi): consistent(), then f |cos| and the
+// cosine density, both zero where wi is below the lobe or the lobe is not valid.
+struct LobeValue {
+  V8 f_cos;
+  F8 pdf;
+};
+[[gnu::always_inline]] inline LobeValue lambertian_value(const Lobe& lobe, const V8& f, const V8& wi) {
+  const F8 z = dot(wi, lobe.n);
+  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
+  return {pick(above, mul(f, absolute(z)), V8{}), pick(above, z * splat(kInvPi), splat(0.0f))};
+}
+
+// power_heuristic (core/sampling.h).
+[[gnu::always_inline]] inline F8 power_heuristic(F8 pdf_a, F8 pdf_b) {
+  const F8 a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+  const F8 sum = a + b;
+  return pick(a == splat(std::numeric_limits<float>::infinity()), splat(1.0f), pick(sum > 0, a / sum, splat(0.0f)));
+}
 
 // For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it (kWantsLight),
 // what PathIntegrator::direct_light gives, bit for bit: the light sample's point, error bound and
@@ -48,7 +68,7 @@ template <class B>
   // whether it is near (near_enough), and the point by area (area_point_draw: for a triangle
   // sample_uniform_triangle, for a quad the half u falls in).
   const F8 plane_distance = dot(sub(l.p, l.p0), l.light_n);
-  const M8 wants = (l.wants != 0) & ((l.double_sided != 0) | (plane_distance > 0));
+  const M8 wants = (l.wants == B::kOnTriangle) & ((l.double_sided != 0) | (plane_distance > 0));
   const M8 quad = l.quad != 0;
   const F8 su = root(l.ux);
   const F8 t0 = splat(1.0f) - su, t1 = l.uy * su;
@@ -97,22 +117,14 @@ template <class B>
   const V8 back{-wi.x, -wi.y, -wi.z};
   const M8 emits = (l.double_sided != 0) | ~(dot(l.light_n, back) <= 0);
   const V8 incident = pick(emits, l.emission, V8{});
-  // Bsdf::evaluate for the Lambertian lobe alone: consistent(), then f |cos| and the cosine density.
-  const F8 z = dot(wi, lobe.n);
-  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
-  const V8 f_cos = pick(above, mul(l.f, absolute(z)), V8{});
-  const F8 bsdf_pdf = pick(above, z * splat(kInvPi), splat(0.0f));
+  const auto [f_cos, bsdf_pdf] = lambertian_value(lobe, l.f, wi);
   const M8 cast = wants & at.drawn & (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
   // spawn_ray_between: each end offset off its own surface toward the other.
   const V8 origin = offset_ray_origin(l.p, l.p_error, rows(batch, B::kNg, f), to_light);
   const V8 to = offset_ray_origin(lp, lp_error, l.light_n, sub(origin, lp));
   const V8 dir = sub(to, origin);
-  // power_heuristic(pdf, bsdf_pdf), and the contribution with beta (beer_lambert is 1 here).
-  const F8 a = pdf * pdf, b = bsdf_pdf * bsdf_pdf;
-  const F8 sum = a + b;
-  const F8 weight = pick(a == splat(std::numeric_limits<float>::infinity()), splat(1.0f),
-                         pick(sum > 0, a / sum, splat(0.0f)));
-  const V8 contribution = mul(l.beta, mul(mul(f_cos, incident), weight / pdf));
+  // The contribution with beta (beer_lambert is 1 here).
+  const V8 contribution = mul(l.beta, mul(mul(f_cos, incident), power_heuristic(pdf, bsdf_pdf) / pdf));
   const F8 fields[] = {origin.x, origin.y, origin.z, dir.x, dir.y, dir.z, contribution.x, contribution.y, contribution.z};
   alignas(32) float o[std::size(fields)][kLanes];
   bool cast_k[kLanes];
@@ -124,6 +136,44 @@ template <class B>
     r.ray = Ray{{o[0][k], o[1][k], o[2][k]}, {o[3][k], o[4][k], o[5][k]}, 0.0f, 1.0f - kShadowEpsilon,
                 batch.leaves(first + k)};
     r.contribution = {o[6][k], o[7][k], o[8][k]};
+  }
+}
+
+// direct_light's case of a light with no point to reach, for the lanes that ask for it (kToward):
+// a punctual light or the sky, whose sample (Emitters::lane_draw) is a direction, a distance (+inf
+// for the sky and the sun), the incident radiance (or irradiance) and a density. What
+// PathIntegrator::direct_light gives, bit for bit: the lobe's value, the shadow ray
+// (spawn_ray_toward) and the weight, 1 for a punctual light (no MIS), else the power heuristic.
+// It writes the results of those lanes only.
+template <class B>
+[[gnu::always_inline]] inline void direct_light_toward(const B& batch, int first, const Lobe& lobe,
+                                                       LaneLightResult* out) {
+  const int f = first;
+  const V8 wi = rows(batch, B::kTowardW, f), incident = rows(batch, B::kIncident, f);
+  const F8 distance = row(batch, B::kTowardDistance, f), pdf = row(batch, B::kTowardPdf, f);
+  const M8 wants = row(batch, B::kWantsLight, f) == B::kToward;
+  const auto [f_cos, bsdf_pdf] = lambertian_value(lobe, rows(batch, B::kF, f), wi);
+  const M8 cast = wants & any_nonzero(incident) & any_nonzero(f_cos);
+  const V8 origin = offset_ray_origin(rows(batch, B::kP, f), rows(batch, B::kPError, f), rows(batch, B::kNg, f), wi);
+  const F8 infinity = splat(std::numeric_limits<float>::infinity());
+  const F8 t_max = pick(absolute(distance) == infinity, distance, distance * (1.0f - kShadowEpsilon));
+  const F8 weight = pick(row(batch, B::kTowardDelta, f) != 0, splat(1.0f), power_heuristic(pdf, bsdf_pdf));
+  const V8 contribution = mul(rows(batch, B::kBeta, f), mul(mul(f_cos, incident), weight / pdf));
+  const F8 fields[] = {origin.x, origin.y, origin.z, t_max, contribution.x, contribution.y, contribution.z};
+  alignas(32) float o[std::size(fields)][kLanes];
+  bool cast_k[kLanes];
+  const int lanes = unpack(fields, cast, batch.size() - first, o, cast_k);
+  alignas(32) int32_t wants_k[kLanes];
+  std::memcpy(wants_k, &wants, sizeof wants);
+  for (int k = 0; k < lanes; ++k) {
+    if (!wants_k[k]) continue;
+    LaneLightResult& r = out[first + k];
+    r.cast = cast_k[k];
+    if (!r.cast) continue;
+    const Vec3 w{batch.row(B::kTowardW)[first + k], batch.row(B::kTowardW + 1)[first + k],
+                 batch.row(B::kTowardW + 2)[first + k]};
+    r.ray = Ray{{o[0][k], o[1][k], o[2][k]}, w, 0.0f, o[3][k], batch.leaves(first + k)};
+    r.contribution = {o[4][k], o[5][k], o[6][k]};
   }
 }
 

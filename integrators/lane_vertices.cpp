@@ -15,7 +15,10 @@ struct Results {
 [[gnu::always_inline]] inline void eight_lanes(const LaneVertexBatch& batch, int first, const Results* out) {
   using namespace lanes;
   const Lobe lobe = lambertian_lobe(batch, first);
-  if (any(row(batch, LaneVertexBatch::kWantsLight, first) != 0)) direct_light(batch, first, lobe, out->lights);
+  const F8 light = row(batch, LaneVertexBatch::kWantsLight, first);
+  // Toward a direction second: it writes its own lanes' results only, over what the first left there.
+  if (any(light == LaneVertexBatch::kOnTriangle)) direct_light(batch, first, lobe, out->lights);
+  if (any(light == LaneVertexBatch::kToward)) direct_light_toward(batch, first, lobe, out->lights);
   if (any(row(batch, LaneVertexBatch::kWantsBounce, first) != 0)) bounce(batch, first, lobe, out->bounces);
 }
 
@@ -36,11 +39,22 @@ int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const 
 void LaneVertexBatch::request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light) {
   leaves_[lane] = leaves;
   records_[lane] = light.record->v;
-  set(kWantsLight, lane, 1.0f);
+  set(kWantsLight, lane, kOnTriangle);
   set(kBeta, lane, beta);
   set(kLightUx, lane, light.u.x);
   set(kLightUy, lane, light.u.y);
   set(kPmf, lane, light.pmf);
+}
+
+void LaneVertexBatch::request_light_toward(int lane, TriangleId leaves, const Rgb& beta, const EmitterSample& light) {
+  leaves_[lane] = leaves;
+  set(kWantsLight, lane, kToward);
+  set(kBeta, lane, beta);
+  set(kTowardW, lane, light.wi);
+  set(kIncident, lane, light.incident);
+  set(kTowardDistance, lane, light.distance);
+  set(kTowardPdf, lane, light.pdf);
+  set(kTowardDelta, lane, light.delta ? 1.0f : 0.0f);
 }
 
 void LaneVertexBatch::request_bounce(int lane, Vec2 u) {

@@ -11,13 +11,18 @@
 namespace prism {
 
 // A vertex's fields; rows of three hold a vector's x, y and z. The surface's come first
-// (LambertianSurfaceFields), then the light request's, then the bounce's. The light's own
-// constants are not among them: each lane points at its light's record (Emitters::LaneRecord).
+// (LambertianSurfaceFields), then the light request's, then the bounce's, then those of a light
+// sample toward a direction. A triangle light's own constants are not among them: each lane points
+// at its light's record (Emitters::LaneRecord).
 struct LaneVertexFields : LambertianSurfaceFields {
   enum Row {
     kBeta = kSurfaceRows,  // three rows, one each below
-    kLightUx = kBeta + 3, kLightUy, kPmf, kWantsLight, kBounceUx, kBounceUy, kWantsBounce, kRows
+    kLightUx = kBeta + 3, kLightUy, kPmf, kWantsLight, kBounceUx, kBounceUy, kWantsBounce,
+    kTowardW, kIncident = kTowardW + 3, kTowardDistance = kIncident + 3, kTowardPdf, kTowardDelta, kRows
   };
+  // kWantsLight: a point on a triangle light (kLightUx, kLightUy, kPmf and the record), or a
+  // direction toward a punctual light or the sky (kTowardW to kTowardDelta); 0: none.
+  static constexpr float kOnTriangle = 1, kToward = 2;
 };
 
 // Up to kLanes Lambertian vertices (Bsdf::lambertian_only), each asking for its light sample, its
@@ -30,6 +35,8 @@ class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneV
   // The lane's light sample: the triangle its hit is on, the path's throughput, and the light point
   // drawn for it (Emitters::triangle_draw), whose record must outlive the kernel's run.
   void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light);
+  // The lane's light sample toward a punctual light or the sky, drawn already (Emitters::lane_draw).
+  void request_light_toward(int lane, TriangleId leaves, const Rgb& beta, const EmitterSample& light);
   // The lane's bounce, with its direction draw.
   void request_bounce(int lane, Vec2 u);
   TriangleId leaves(int lane) const { return leaves_[lane]; }

@@ -142,20 +142,32 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
   return q;
 }
 
-bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bounce& bounce,
-                                        const Path& path, const MaterialDesc& material, const VertexSamples& u,
-                                        const Arrival& at, ShadowQuery& shadow, LaneVertexBatch& lanes,
-                                        int lane) const {
+// Inlined in advance, its one caller.
+[[gnu::always_inline]] inline bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit,
+                                                                      const Bounce& bounce, const Path& path,
+                                                                      const MaterialDesc& material,
+                                                                      const VertexSamples& u, const Arrival& at,
+                                                                      ShadowQuery& shadow, LaneVertexBatch& lanes,
+                                                                      int lane) const {
   // lanes::direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
   // surface (beer_lambert is 1).
   if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
+  const Emitters& emitters = scene.emitters();
   Emitters::TriangleDraw draw;
-  switch (scene.emitters().triangle_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
+  switch (emitters.triangle_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
     case Emitters::Draw::kNothing: return true;
     case Emitters::Draw::kOther: return false;
-    case Emitters::Draw::kOnTriangle: break;
+    case Emitters::Draw::kOnTriangle: lanes.request_light(lane, hit.triangle, path.beta, draw); break;
+    case Emitters::Draw::kToward: {
+      // direct_light's sample, whose direction the lanes take on.
+      const EmitterSample ls =
+          at.light ? emitters.sample_light(*at.light, hit.p, u.light_spare, u.light_point, at.sky_light)
+                   : emitters.sample(hit.p, pick_normal(hit), u.light_spare, u.light_point, at.sky_light);
+      if (!(ls.pdf > 0)) return true;
+      lanes.request_light_toward(lane, hit.triangle, path.beta, ls);
+      break;
+    }
   }
-  lanes.request_light(lane, hit.triangle, path.beta, draw);
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
   return true;

@@ -32,7 +32,8 @@ class PathIntegrator final : public Integrator {
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
   // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes (lane_vertices):
-  // next-event estimation toward untextured triangles and quads, and the bounce. On by default;
+  // next-event estimation toward untextured triangles and quads, punctual lights and the sky (its
+  // direction drawn by the scalar code), and the bounce. On by default;
   // either way the images are the same bits, so off serves tests and measurements.
   void set_lanes(bool on) { lanes_ = on; }
 

@@ -21,6 +21,7 @@
 #include "core/sampling.h"
 #include "core/scene.h"
 #include "core/spawn.h"
+#include "materials/bsdf.h"
 #include "materials/material_eval.h"
 #include "scene_builders.h"
 
@@ -244,6 +245,16 @@ TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
 }
 
+// A batch's light samples taken in AVX2 (where the CPU has it) and in SSE pairs.
+struct LightLanes {
+  explicit LightLanes(const LaneVertexBatch& batch) {
+    LaneBounce unasked[LaneVertexBatch::kLanes];
+    lane_vertices(batch, avx2, unasked);
+    lane_vertices(batch, sse, unasked, false);
+  }
+  LaneLightResult avx2[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
+};
+
 // The lanes' shadow rays are spawn_ray_between's, bit for bit, wherever the points are: at and near
 // zero (where the offset steps from -0 and crosses signs), far from the origin, with normals along
 // an axis (offsets of zero) and in general directions, lit from either side; with AVX2 and without.
@@ -292,10 +303,8 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
       const int lane = batch.add({toward, from[k].ng, toward, Rgb(1.0f)}, from[k].p, from[k].p_error);
       batch.request_light(lane, from[k].triangle, Rgb(1.0f), draw[k]);
     }
-    LaneLightResult out[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
-    LaneBounce unasked[LaneVertexBatch::kLanes];
-    lane_vertices(batch, out, unasked);
-    lane_vertices(batch, sse, unasked, false);
+    const LightLanes both(batch);
+    const LaneLightResult *out = both.avx2, *sse = both.sse;
     for (int k = 0; k < n; ++k) {
       // Without AVX2 (SSE pairs), the same bits.
       ASSERT_EQ(out[k].cast, sse[k].cast);
@@ -325,6 +334,65 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
     }
   }
   EXPECT_GT(compared, 5000);
+}
+
+// The lanes' shadow rays toward a direction are spawn_ray_toward's, bit for bit, for finite and
+// infinite distances, and their contributions direct_light's (the Lambertian lobe's value through a
+// Bsdf, the power heuristic or, for a punctual light, none), with AVX2 and without.
+TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
+  Pcg32 rng(45, 46);
+  int compared = 0;
+  for (int round = 0; round < 2000; ++round) {
+    const int n = 1 + round % LaneVertexBatch::kLanes;
+    LaneVertexBatch batch;
+    SurfaceHit from[LaneVertexBatch::kLanes];
+    EmitterSample light[LaneVertexBatch::kLanes];
+    Vec3 wo[LaneVertexBatch::kLanes];
+    const Rgb f(0.2f, 0.1f, 0.05f), beta(0.9f, 0.7f, 0.5f);
+    for (int k = 0; k < n; ++k) {
+      from[k].p = Vec3(rng.next_float(), rng.next_float(), rng.next_float()) * 100.0f - Vec3(50.0f);
+      from[k].p_error = abs(from[k].p) * 1e-6f;
+      from[k].ng = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      from[k].ns = from[k].ng;
+      from[k].triangle = {1, 2, uint32_t(k)};
+      wo[k] = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      EmitterSample& l = light[k];
+      l.wi = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      l.delta = rng.next_float() < 0.3f;
+      l.infinite = !l.delta;
+      l.distance = l.delta && rng.next_float() < 0.5f ? 0.5f + 10 * rng.next_float() : kInfinity;
+      l.pdf = l.delta ? 0.25f : 0.1f + rng.next_float();
+      l.incident = Rgb(rng.next_float(), 2 * rng.next_float(), 0.5f);
+      const int lane = batch.add({from[k].ns, from[k].ng, wo[k], f}, from[k].p, from[k].p_error);
+      batch.request_light_toward(lane, from[k].triangle, beta, l);
+    }
+    const LightLanes both(batch);
+    const LaneLightResult *out = both.avx2, *sse = both.sse;
+    for (int k = 0; k < n; ++k) {
+      ASSERT_EQ(out[k].cast, sse[k].cast);
+      // direct_light's steps for this sample at a Lambertian surface of albedo pi f.
+      SurfaceParams params;
+      params.base_color = f * kPi;
+      params.metallic = 0;
+      const Bsdf bsdf(params, from[k].ns, from[k].ng, wo[k], 1.0f);
+      const Bsdf::Value v = bsdf.evaluate(light[k].wi);
+      const bool expected_cast = !is_black(light[k].incident) && !is_black(v.f_cos);
+      ASSERT_EQ(out[k].cast, expected_cast) << "round " << round << " lane " << k;
+      if (!out[k].cast) continue;
+      const float weight = light[k].delta ? 1.0f : power_heuristic(light[k].pdf, v.pdf);
+      const Rgb contribution = beta * (v.f_cos * light[k].incident * (weight / light[k].pdf));
+      const Ray expected = spawn_ray_toward(from[k], light[k].wi, light[k].distance);
+      for (const LaneLightResult* r : {&out[k], &sse[k]}) {
+        EXPECT_EQ(r->contribution, contribution) << "round " << round << " lane " << k;
+        EXPECT_EQ(r->ray.origin, expected.origin);
+        EXPECT_EQ(r->ray.dir, expected.dir);
+        EXPECT_EQ(r->ray.t_max, expected.t_max);
+        EXPECT_EQ(r->ray.leaves.primitive, expected.leaves.primitive);
+      }
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 10000);
 }
 
 // The lanes' bounces are Bsdf::sample's for a Lambertian lobe and their rays' origins spawn_ray's,
@@ -550,6 +618,54 @@ TEST(Lanes, GiveTheScalarPathsBitsUnderALightTree) {
   const Scene scene(std::move(desc), &material_alpha);
   ASSERT_EQ(scene.emitters().light_sampling(), LightSampling::Tree);
   EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
+}
+
+// A floor, a back wall, a block and a sphere open to a sky map, lit by it, by a point light, a spot,
+// the sun and a lamp on the wall; with `pane`, a thin glass sheet above them, through which the sky is also sampled
+// (EnvironmentPortals), else the sky samples are drawn ahead for a packet (environment_map_draw).
+SceneDesc open_to_the_sky(bool pane) {
+  SceneDesc desc;
+  const int wall = test::add_material(desc, Rgb(0.6f, 0.5f, 0.4f));
+  test::add_quad(desc, Vec3(-4, -2, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), wall);  // floor, facing up
+  test::add_quad(desc, Vec3(-4, -2, -2), Vec3(8, 0, 0), Vec3(0, 4, 0), wall);  // back wall, facing +z
+  const int block = test::add_box(desc, Vec3(-0.3f), Vec3(0.3f), test::add_material(desc, Rgb(0.3f, 0.7f, 0.5f)));
+  desc.instances[size_t(block)].object_to_world = Transform::translate(Vec3(-1, -1.5f, 0));
+  test::add_sphere(desc, Vec3(1, -1.4f, -0.5f), 0.6f, wall);
+  // A lamp on the back wall: blocks of lanes mix points on it with directions.
+  test::add_quad(desc, Vec3(-0.5f, 0.5f, -1.99f), Vec3(1, 0, 0), Vec3(0, 0.5f, 0),
+                 test::add_material(desc, Rgb(0.0f), Rgb(3.0f, 2.0f, 1.0f)));
+  if (pane) test::add_quad(desc, Vec3(-1.5f, 1.5f, -1.5f), Vec3(3, 0, 0), Vec3(0, 0, 3),
+                           test::add_glass(desc, 1.5f, Rgb(1.0f), 1.0f, /*thin_walled=*/true));
+  ImageDesc& sky = desc.images.emplace_back();  // a dim sky with one bright texel
+  sky.width = 8;
+  sky.height = 4;
+  sky.channels = 3;
+  for (int i = 0; i < 8 * 4; ++i)
+    for (float c : {0.3f + 0.01f * float(i), 0.4f, 0.7f}) sky.texels.push_back(i == 10 ? 50.0f * c : c);
+  desc.environment.present = true;
+  desc.environment.image = int(desc.images.size()) - 1;
+  PunctualLightDesc point, spot, sun;
+  point.position = Vec3(1, 1, 1);
+  point.intensity = Rgb(5, 4, 3);
+  spot.type = LightType::Spot;
+  spot.position = Vec3(-1, 1.5f, 0);
+  spot.direction = Vec3(0, -1, 0);
+  spot.intensity = Rgb(20);
+  sun.type = LightType::Directional;
+  sun.direction = normalize(Vec3(-0.3f, -1, -0.2f));
+  sun.intensity = Rgb(2);
+  desc.lights = {point, spot, sun};
+  return desc;
+}
+
+// The lanes' light samples toward a direction (Emitters::Draw::kToward: the sky, punctual lights)
+// give the scalar code's bits, under an open sky and through a window.
+TEST(Lanes, GiveTheScalarPathsBitsUnderTheSkyAndPunctualLights) {
+  for (const bool pane : {false, true}) {
+    const Scene scene(open_to_the_sky(pane), &material_alpha);
+    ASSERT_EQ(scene.emitters().portals().empty(), !pane);
+    EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u) << "pane " << pane;
+  }
 }
 
 // The same under a light tree larger than the caches, where the lanes choose their lights together

@@ -322,6 +322,31 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
   return pick * environment_direction_pdf(&view, ref, w, map_pdf);
 }
 
+// The sky's direction where it has portals: one draw chooses portal or map, then serves the one
+// chosen (one-sample MIS: the density of either is the mixture's). False: no direction.
+bool Emitters::sky_sample(const EnvironmentPortals::View& view, const Vec3& ref, Vec2 u, Vec3& wi,
+                          EnvironmentLight::Seen& seen, float& pdf_dir) const {
+  const float share = view.total > 0 ? kPortalShare : 0.0f;
+  int drawn_in = -1;
+  if (u.x < share) {
+    u.x = std::min(u.x / share, 0x1.fffffep-1f);
+    const std::optional<EnvironmentPortals::Sample> through = portals_.sample(view, ref, u);
+    if (!through) return false;
+    wi = through->w;
+    drawn_in = through->triangle;
+    seen = environment_.seen(wi);
+  } else {
+    u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
+    const EnvironmentLight::Sample drawn = environment_.sample(u);
+    wi = drawn.wi;
+    seen = drawn.seen;
+    // In the mixture the map's density is w's own, even where sample() gave the draw none.
+    if (!(seen.pdf > 0)) seen.pdf = environment_.pdf(wi);
+  }
+  pdf_dir = environment_direction_pdf(&view, ref, wi, seen.pdf, drawn_in);
+  return true;
+}
+
 // The emitter is chosen by u.x, which rescaled within the emitter's share then places the point:
 // the 2D draws of a pixel's samples stay stratified over all the triangles of a light together,
 // where choosing by a dimension of its own would hand each triangle a random subset of them (Cycles
@@ -331,7 +356,8 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
 // Inlined in sample(), which is what most scenes call.
 [[gnu::always_inline]] EmitterSample Emitters::sample_light(const std::optional<Pick>& chosen, const Vec3& ref,
                                                             float u_spare, Vec2 u,
-                                                            const EnvironmentLight::Sample* sky) const {
+                                                            const EnvironmentLight::Sample* sky,
+                                                            const EnvironmentPortals::View* portal_view) const {
   if (!chosen) return {};
   u.x = point_draw(*chosen, u_spare);
   const size_t i = chosen->index;
@@ -347,27 +373,9 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
       seen = drawn.seen;
       pdf_dir = seen.pdf;
     } else {
-      // One draw chooses portal or map, then serves the one chosen (one-sample MIS: the density
-      // of either is the mixture's).
-      const EnvironmentPortals::View view = portals_.view(ref);
-      const float share = view.total > 0 ? kPortalShare : 0.0f;
-      int drawn_in = -1;
-      if (u.x < share) {
-        u.x = std::min(u.x / share, 0x1.fffffep-1f);
-        const std::optional<EnvironmentPortals::Sample> through = portals_.sample(view, ref, u);
-        if (!through) return {};
-        s.wi = through->w;
-        drawn_in = through->triangle;
-        seen = environment_.seen(s.wi);
-      } else {
-        u.x = std::min((u.x - share) / (1 - share), 0x1.fffffep-1f);
-        const EnvironmentLight::Sample drawn = environment_.sample(u);
-        s.wi = drawn.wi;
-        seen = drawn.seen;
-        // In the mixture the map's density is w's own, even where sample() gave the draw none.
-        if (!(seen.pdf > 0)) seen.pdf = environment_.pdf(s.wi);
-      }
-      pdf_dir = environment_direction_pdf(&view, ref, s.wi, seen.pdf, drawn_in);
+      const bool drawn = portal_view ? sky_sample(*portal_view, ref, u, s.wi, seen, pdf_dir)
+                                     : sky_sample(portals_.view(ref), ref, u, s.wi, seen, pdf_dir);
+      if (!drawn) return {};
     }
     s.pdf = chosen->pmf * pdf_dir;
     s.distance = std::numeric_limits<float>::infinity();
@@ -393,8 +401,8 @@ float Emitters::environment_pdf(const Vec3& ref, const Vec3& w, float map_pdf) c
 }
 
 EmitterSample Emitters::sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
-                               const EnvironmentLight::Sample* sky) const {
-  return sample_light(pick(ref, ref_n, u.x), ref, u_spare, u, sky);
+                               const EnvironmentLight::Sample* sky, const EnvironmentPortals::View* portal_view) const {
+  return sample_light(pick(ref, ref_n, u.x), ref, u_spare, u, sky, portal_view);
 }
 
 float Emitters::pdf(int index, const Vec3& ref, const Vec3& ref_n, const Vec3& p, const Vec3& n) const {

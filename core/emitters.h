@@ -73,12 +73,15 @@ class Emitters {
   // (zero: none); pdf 0 when nothing can be sampled. u chooses the emitter and the point on it;
   // u_spare stands in for u.x where the emitter's share of u.x is too narrow to place the point.
   // sky: environment_.sample(*environment_map_draw(u_spare, u)) when the caller drew it already
-  // (a batch of draws at once), else null.
+  // (a batch of draws at once), else null. portal_view: portals().view(ref), where the caller made
+  // it already (portal_views, for a batch of points at once), else null.
   EmitterSample sample(const Vec3& ref, const Vec3& ref_n, float u_spare, Vec2 u,
-                       const EnvironmentLight::Sample* sky = nullptr) const;
+                       const EnvironmentLight::Sample* sky = nullptr,
+                       const EnvironmentPortals::View* portal_view = nullptr) const;
   // sample() where the light was chosen already: `chosen` is pick_many's choice for (ref, ref_n, u.x).
   EmitterSample sample_light(const std::optional<Pick>& chosen, const Vec3& ref, float u_spare, Vec2 u,
-                             const EnvironmentLight::Sample* sky = nullptr) const;
+                             const EnvironmentLight::Sample* sky = nullptr,
+                             const EnvironmentPortals::View* portal_view = nullptr) const;
   // An area light as sample_light samples it.
   struct Emitter {
     bool sphere = false;
@@ -180,6 +183,10 @@ class Emitters {
   LightSampling light_sampling() const { return how_; }
 
  private:
+  // sample_light's sky where it has portals, seen as `view` from ref: its direction, radiance and
+  // density (the mixture of portals and map); false where the draw gives none.
+  bool sky_sample(const EnvironmentPortals::View& view, const Vec3& ref, Vec2 u, Vec3& wi,
+                  EnvironmentLight::Seen& seen, float& pdf_dir) const;
   Emitter make_triangle(const InstanceDesc& inst, int instance, const PrimitiveDesc& prim, int primitive,
                         uint32_t t) const;
   // Makes `a` the quad of a and the triangle b that follows it, when they form one.

@@ -6,10 +6,6 @@
 namespace prism {
 namespace {
 
-// Below this a triangle is left out of the view, in sampling and density alike: seen edge-on or
-// from very far, its spherical triangle is all rounding.
-constexpr float kMinSolidAngle = 1e-7f;
-
 // Whether the ray from o along w crosses triangle (p0, p1, p2) (Moller and Trumbore 1997).
 bool crosses(const Vec3& o, const Vec3& w, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
@@ -55,12 +51,11 @@ EnvironmentPortals::EnvironmentPortals(const SceneDesc& desc) {
 
 EnvironmentPortals::View EnvironmentPortals::view(const Vec3& ref) const {
   View v;
-  SphericalTriangle::Corner* seen = reinterpret_cast<SphericalTriangle::Corner*>(v.corners);
-  for (size_t i = 0; i < corners_.size(); ++i)
-    new (seen + i) SphericalTriangle::Corner(SphericalTriangle::see(ref, corners_[i]));
+  for (size_t i = 0; i < corners_.size(); ++i) v.set_corner(i, SphericalTriangle::see(ref, corners_[i]));
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const Triangle& t = triangles_[i];
     const float omega = SphericalTriangle::solid_angle(v.corner(t.c0), v.corner(t.c1), v.corner(t.c2));
+    v.solid_angle[i] = 0;
     if (omega >= kMinSolidAngle && std::isfinite(omega)) {
       v.solid_angle[i] = omega;
       v.total += omega;

@@ -33,14 +33,27 @@ class EnvironmentPortals {
   bool empty() const { return triangles_.empty(); }
   size_t size() const { return triangles_.size(); }
 
+  // Below this a triangle is left out of a view, in sampling and density alike: seen edge-on or
+  // from very far, its spherical triangle is all rounding.
+  static constexpr float kMinSolidAngle = 1e-7f;
+  // A triangle's corners, by their index in corners().
+  struct Triangle {
+    int c0, c1, c2;
+  };
+  const std::vector<Vec3>& corners() const { return corners_; }  // each point once
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+
   // The portals seen from one point: each corner as seen from it (a corner that triangles share,
   // as a pane's two halves do, is seen once), each triangle's solid angle and their sum.
   struct View {
-    float solid_angle[kMaxTriangles] = {};
+    float solid_angle[kMaxTriangles];  // set for the portals' triangles only, as the corners are
     float total = 0;  // 0: no portal subtends a usable solid angle from here
     // Raw storage, set for the portals' corners only: zeroing all of it would cost more.
     const SphericalTriangle::Corner& corner(size_t i) const {
       return *std::launder(reinterpret_cast<const SphericalTriangle::Corner*>(corners) + i);
+    }
+    void set_corner(size_t i, const SphericalTriangle::Corner& c) {
+      new (corners + i * sizeof(SphericalTriangle::Corner)) SphericalTriangle::Corner(c);
     }
     alignas(SphericalTriangle::Corner) unsigned char corners[kMaxCorners * sizeof(SphericalTriangle::Corner)];
   };
@@ -59,10 +72,7 @@ class EnvironmentPortals {
   float pdf(const View& view, const Vec3& ref, const Vec3& w, int drawn_in = -1) const;
 
  private:
-  struct Triangle {
-    int c0, c1, c2;  // in corners_
-  };
-  std::vector<Vec3> corners_;  // each point once
+  std::vector<Vec3> corners_;
   std::vector<Triangle> triangles_;
 };
 

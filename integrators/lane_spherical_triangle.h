@@ -24,6 +24,16 @@ struct Corner8 {
   return c;
 }
 
+// SphericalTriangle::solid_angle: the solid angle alone, with its operations in the same order.
+[[gnu::always_inline]] inline F8 solid_angle(const Corner8& c0, const Corner8& c1, const Corner8& c2) {
+  const M8 seen = (c0.distance > 0) & (c1.distance > 0) & (c2.distance > 0);
+  const F8 det =
+      dot(c0.dir, cross(mul(sub(c1.p, c0.p), c1.inverse_distance), mul(sub(c2.p, c0.p), c2.inverse_distance)));
+  const F8 ab = dot(c0.dir, c1.dir), bc = dot(c1.dir, c2.dir), ca = dot(c2.dir, c0.dir);
+  const F8 omega = splat(2.0f) * atan2_fast(absolute(det), splat(1.0f) + ab + bc + ca);
+  return pick(seen & (absolute(omega) <= std::numeric_limits<float>::max()), omega, splat(0.0f));
+}
+
 // A SphericalTriangle's members, lane by lane (all zero where ref is on a corner, as there).
 struct SphericalTriangle8 {
   V8 a, b, c, e1, e2, o;

@@ -6,6 +6,7 @@
 
 #include "core/spawn.h"
 #include "integrators/first_hit_aovs.h"
+#include "integrators/lane_portal_views.h"
 #include "integrators/medium_stack.h"
 #include "integrators/sheet_crossing.h"
 #include "materials/material_eval.h"
@@ -73,6 +74,7 @@ struct PathIntegrator::Arrival {
   const VertexSamples* draws = nullptr;  // the vertex's draws, where the path scatters (scatters_next)
   const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
   const std::optional<Emitters::Pick>* light = nullptr;  // the light those draws chose, where li_packet chose it
+  const EnvironmentPortals::View* portal_view = nullptr;  // the sky's portals seen from the hit, where made
 };
 
 // The normal a vertex's light is chosen for (a light tree weighs lights by the cosine about it):
@@ -103,12 +105,14 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                                                          const MaterialDesc& material, bool from_front,
                                                          const VertexSamples& u,
                                                          const EnvironmentLight::Sample* sky,
-                                                         const std::optional<Emitters::Pick>* light) const {
+                                                         const std::optional<Emitters::Pick>* light,
+                                                         const EnvironmentPortals::View* portal_view) const {
   const SceneDesc& desc = scene.desc();
   const Emitters& emitters = scene.emitters();
   ShadowQuery q;
-  const EmitterSample ls = light ? emitters.sample_light(*light, hit.p, u.light_spare, u.light_point, sky)
-                                 : emitters.sample(hit.p, pick_normal(hit), u.light_spare, u.light_point, sky);
+  const Vec2 point = u.light_point;
+  const EmitterSample ls = light ? emitters.sample_light(*light, hit.p, u.light_spare, point, sky, portal_view)
+                                 : emitters.sample(hit.p, pick_normal(hit), u.light_spare, point, sky, portal_view);
   if (!(ls.pdf > 0)) return q;
   Vec3 wi;
   float dist;
@@ -160,9 +164,10 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     case Emitters::Draw::kOnTriangle: lanes.request_light(lane, hit.triangle, path.beta, draw); break;
     case Emitters::Draw::kToward: {
       // direct_light's sample, whose direction the lanes take on.
+      const Vec2 point = u.light_point;
       const EmitterSample ls =
-          at.light ? emitters.sample_light(*at.light, hit.p, u.light_spare, u.light_point, at.sky_light)
-                   : emitters.sample(hit.p, pick_normal(hit), u.light_spare, u.light_point, at.sky_light);
+          at.light ? emitters.sample_light(*at.light, hit.p, u.light_spare, point, at.sky_light, at.portal_view)
+                   : emitters.sample(hit.p, pick_normal(hit), u.light_spare, point, at.sky_light, at.portal_view);
       if (!(ls.pdf > 0)) return true;
       lanes.request_light_toward(lane, hit.triangle, path.beta, ls);
       break;
@@ -284,7 +289,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
     if (!(in_lanes && queue_direct_light(scene, hit, bounce, path, material, u, at, shadow, *lanes, lane))) {
-      shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light);
+      shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light,
+                            at.portal_view);
       if (shadow.cast) {
         ++counters.shadow;
         shadow.contribution = beta * shadow.contribution;
@@ -438,6 +444,12 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   int sky_draw_lane[kLanes];
   EnvironmentLight::Sample sky_samples[kLanes];
   const EnvironmentLight::Sample* sky_light[kLanes];
+  // Where the sky has portals, every light sample that chooses it sees them from its vertex: the
+  // views of eight vertices are made at once (portal_views), a block at a time as the lanes shade.
+  const EnvironmentPortals& portals = scene.emitters().portals();
+  const bool has_portals = !portals.empty();
+  constexpr int kViews = 8;
+  EnvironmentPortals::View portal_view[kViews];
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
@@ -495,12 +507,19 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
 
     lanes.clear();
     for (int i = 0; i < m; ++i) {
+      if (has_portals && i % kViews == 0) {
+        Vec3 refs[kViews];
+        const int block = std::min(kViews, m - i);
+        for (int k = 0; k < block; ++k) refs[k] = found[i + k] ? hits[i + k].p : Vec3(0.0f);
+        portal_views(portals, refs, block, portal_view);
+      }
       Arrival at;
       if (found[i]) {
         at.hit = &hits[i];
         at.draws = &draws[i];
         at.sky_light = sky_light[i];
         at.light = light[i];
+        if (has_portals) at.portal_view = &portal_view[i % kViews];
       } else if (sky.has_map()) {
         at.sky_uv = &sky_uv[i];
       }

@@ -69,12 +69,13 @@ class PathIntegrator final : public Integrator {
                           LaneVertexBatch& lanes, int lane) const;
   // Light from one sampled light through the BSDF, before its visibility is known: the shadow ray
   // to test and what it adds when unoccluded (the medium's attenuation and MIS weight included).
-  // sky, light: the light sample's sky direction and the light, when the caller drew them
-  // (Emitters::sample, Emitters::pick_many).
+  // sky, light, portal_view: the light sample's sky direction, the light and the sky's portals seen
+  // from the hit, when the caller made them (Emitters::sample, Emitters::pick_many, portal_views).
   ShadowQuery direct_light(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Bounce& bounce,
                            const MediumStack& media, const MaterialDesc& material, bool from_front,
                            const VertexSamples& u, const EnvironmentLight::Sample* sky,
-                           const std::optional<Emitters::Pick>* light) const;
+                           const std::optional<Emitters::Pick>* light,
+                           const EnvironmentPortals::View* portal_view) const;
   // How the vertex at `hit` draws its next direction: from the BSDF alone, or also aimed at casters.
   // Fills `out` in place (a view of the casters is a few hundred bytes, made at every vertex).
   void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;

@@ -10,7 +10,9 @@ namespace {
 
 using namespace lanes;
 
-[[gnu::always_inline]] inline V8 splat(const Vec3& v) { return {lanes::splat(v.x), lanes::splat(v.y), lanes::splat(v.z)}; }
+[[gnu::always_inline]] inline V8 splat(const Vec3& v) {
+  return {lanes::splat(v.x), lanes::splat(v.y), lanes::splat(v.z)};
+}
 
 // EnvironmentPortals::view's steps, lane k for refs[k]: the corners in order, then the triangles'
 // solid angles summed in order (a left-out triangle adds nothing: total + 0 is total's bits).

@@ -140,7 +140,7 @@ template <class B>
 }
 
 // direct_light's case of a light with no point to reach, for the lanes that ask for it (kToward):
-// a punctual light or the sky, whose sample (Emitters::lane_draw) is a direction, a distance (+inf
+// a punctual light or the sky, whose sample (Emitters::sample_light) is a direction, a distance (+inf
 // for the sky and the sun), the incident radiance (or irradiance) and a density. What
 // PathIntegrator::direct_light gives, bit for bit: the lobe's value, the shadow ray
 // (spawn_ray_toward) and the weight, 1 for a punctual light (no MIS), else the power heuristic.

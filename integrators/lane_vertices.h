@@ -35,7 +35,7 @@ class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneV
   // The lane's light sample: the triangle its hit is on, the path's throughput, and the light point
   // drawn for it (Emitters::triangle_draw), whose record must outlive the kernel's run.
   void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light);
-  // The lane's light sample toward a punctual light or the sky, drawn already (Emitters::lane_draw).
+  // The lane's light sample toward a punctual light or the sky, drawn already (Emitters::sample_light).
   void request_light_toward(int lane, TriangleId leaves, const Rgb& beta, const EmitterSample& light);
   // The lane's bounce, with its direction draw.
   void request_bounce(int lane, Vec2 u);

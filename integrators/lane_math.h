@@ -128,6 +128,8 @@ template <size_t N>
   std::memcpy(&v, row + first, sizeof v);
   return v;
 }
+// And back: eight lanes into out[0..7].
+[[gnu::always_inline]] inline void store(F8 v, float* out) { std::memcpy(out, &v, sizeof v); }
 // Of a batch's row r (LaneRows), and of rows r to r + 2 as vectors.
 template <class Batch>
 [[gnu::always_inline]] inline F8 row(const Batch& b, int r, int first) {

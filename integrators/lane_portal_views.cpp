@@ -57,11 +57,11 @@ using namespace lanes;
     const F8 kept = pick(omega >= EnvironmentPortals::kMinSolidAngle, omega, lanes::splat(0.0f));
     total = total + kept;
     alignas(32) float o[kLanes];
-    std::memcpy(o, &kept, sizeof kept);
+    store(kept, o);
     for (int k = 0; k < n; ++k) out[k].solid_angle[t] = o[k];
   }
   alignas(32) float o[kLanes];
-  std::memcpy(o, &total, sizeof total);
+  store(total, o);
   for (int k = 0; k < n; ++k) out[k].total = o[k];
 }
 

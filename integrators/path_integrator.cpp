@@ -163,7 +163,9 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     case Emitters::Draw::kOther: return false;
     case Emitters::Draw::kOnTriangle: lanes.request_light(lane, hit.triangle, path.beta, draw); break;
     case Emitters::Draw::kToward: {
-      // direct_light's sample, whose direction the lanes take on.
+      // direct_light's sample, whose direction the lanes take on. Without a light tree the light is
+      // picked again here (a search of the top-level distribution): handing the sample out of
+      // triangle_draw instead cost every triangle draw more (+0.3% on the box, session 45).
       const Vec2 point = u.light_point;
       const EmitterSample ls =
           at.light ? emitters.sample_light(*at.light, hit.p, u.light_spare, point, at.sky_light, at.portal_view)

@@ -69,6 +69,7 @@ struct PathIntegrator::Bounce {
 
 // Where a lane's ray arrived, with what li_packet worked out for all lanes before any shades.
 struct PathIntegrator::Arrival {
+  Vec3 dir;                         // the ray's direction, normalized
   const SurfaceHit* hit = nullptr;  // null: the ray escaped
   const Vec2* sky_uv = nullptr;     // escaped to a map's sky: where it meets the map (EnvironmentLight::prefetch)
   const VertexSamples* draws = nullptr;  // the vertex's draws, where the path scatters (scatters_next)
@@ -204,7 +205,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     // non-delta bounce; inside an absorbing medium the infinite segment absorbs completely.
     const EnvironmentLight& env = emitters.environment();
     if (env.present()) {
-      const Vec3 w = normalize(path.ray.dir);
+      const Vec3& w = at.dir;
       // The sky seen straight through delta events needs no density (no MIS).
       EnvironmentLight::Seen seen;
       if (sky_uv)
@@ -230,7 +231,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   if (!path.media.empty())
     beta *= beer_lambert(path.media.sigma_a(),
                          first_hit ? hit.t * length(path.ray.dir) : length(hit.p - path.segment_start));
-  const Vec3 wo = -normalize(path.ray.dir);
+  const Vec3 wo = -at.dir;
 
   // Emission reached by the previous bounce: weighted against next-event estimation by the
   // power heuristic (Veach 1997, ch. 9); unweighted after a delta event.
@@ -456,8 +457,15 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
     scene.intersect_packet(rays, m, hits, found, camera);
-    for (int i = 0; i < m; ++i)
-      if (found[i]) hits[i].cone_width = rays[i].cone_width_at(hits[i].t);
+    // The rays' unit directions, made together: one at a time, each lane waited for its square root
+    // and division at the top of advance.
+    Vec3 unit_dir[kLanes];
+    for (int i = 0; i < m; ++i) unit_dir[i] = normalize(rays[i].dir);
+    // Ray cones size texture footprints, which only images with MIP levels read (mip_lambda): elsewhere
+    // the width, a square root per hit, would go unused.
+    if (scene.features().mip_levels)
+      for (int i = 0; i < m; ++i)
+        if (found[i]) hits[i].cone_width = rays[i].cone_width_at(hits[i].t);
     // Every lane's texels (of its hit's textures, or of the sky map it escaped to) are asked for
     // before the first lane shades: their cache misses, which each lane would otherwise wait out
     // in turn, overlap.
@@ -466,7 +474,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
     if (scene.features().textures || sky.has_map())
       for (int i = 0; i < m; ++i) {
         if (!found[i])
-          sky_uv[i] = sky.has_map() ? sky.prefetch(normalize(rays[i].dir)) : Vec2{};
+          sky_uv[i] = sky.has_map() ? sky.prefetch(unit_dir[i]) : Vec2{};
         else if (scene.features().textures)
           prefetch_textures(scene.desc(), scene.desc().material(hits[i].material), hits[i].uv, hits[i].uv_width());
       }
@@ -516,6 +524,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         portal_views(portals, refs, block, portal_view);
       }
       Arrival at;
+      at.dir = unit_dir[i];
       if (found[i]) {
         at.hit = &hits[i];
         at.draws = &draws[i];

@@ -15,10 +15,15 @@
 namespace prism {
 
 // The shadow ray to trace and what it adds when unoccluded (beta included); cast false: none.
+// Where the lane was to be weighed later (LaneVertexBatch::weigh_later), `contribution` is the
+// lobe's value times the incident light alone, and the direction, the light's density and the
+// lobe's are given for the caller's MIS weight.
 struct LaneLightResult {
   Ray ray;
   Rgb contribution;
   bool cast = false;
+  Vec3 wi;
+  float pdf = 0, bsdf_pdf = 0;
 };
 
 namespace lanes {
@@ -40,6 +45,24 @@ struct LobeValue {
   const F8 a = pdf_a * pdf_a, b = pdf_b * pdf_b;
   const F8 sum = a + b;
   return pick(a == splat(std::numeric_limits<float>::infinity()), splat(1.0f), pick(sum > 0, a / sum, splat(0.0f)));
+}
+
+// Where lanes first to first + 7 that cast a shadow ray are to be weighed later (`later`,
+// LaneVertexFields::kWeighLater), their results' MIS pieces: the direction and the two densities.
+[[gnu::always_inline]] inline void weigh_later(M8 later, const V8& wi, F8 pdf, F8 bsdf_pdf, int count, int first,
+                                               LaneLightResult* out) {
+  if (!any(later)) return;
+  const F8 fields[] = {wi.x, wi.y, wi.z, pdf, bsdf_pdf};
+  alignas(32) float o[std::size(fields)][kLanes];
+  bool later_k[kLanes];
+  const int lanes = unpack(fields, later, count, o, later_k);
+  for (int k = 0; k < lanes; ++k) {
+    if (!later_k[k]) continue;
+    LaneLightResult& r = out[first + k];
+    r.wi = {o[0][k], o[1][k], o[2][k]};
+    r.pdf = o[3][k];
+    r.bsdf_pdf = o[4][k];
+  }
 }
 
 // For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it (kWantsLight),
@@ -123,8 +146,11 @@ template <class B>
   const V8 origin = offset_ray_origin(l.p, l.p_error, rows(batch, B::kNg, f), to_light);
   const V8 to = offset_ray_origin(lp, lp_error, l.light_n, sub(origin, lp));
   const V8 dir = sub(to, origin);
-  // The contribution with beta (beer_lambert is 1 here).
-  const V8 contribution = mul(l.beta, mul(mul(f_cos, incident), power_heuristic(pdf, bsdf_pdf) / pdf));
+  // The contribution with beta (beer_lambert is 1 here), or its unweighted part.
+  const V8 unweighted = mul(f_cos, incident);
+  const M8 later = row(batch, B::kWeighLater, f) != 0;
+  const V8 contribution =
+      pick(later, unweighted, mul(l.beta, mul(unweighted, power_heuristic(pdf, bsdf_pdf) / pdf)));
   const F8 fields[] = {origin.x, origin.y, origin.z, dir.x, dir.y, dir.z, contribution.x, contribution.y, contribution.z};
   alignas(32) float o[std::size(fields)][kLanes];
   bool cast_k[kLanes];
@@ -137,6 +163,7 @@ template <class B>
                 batch.leaves(first + k)};
     r.contribution = {o[6][k], o[7][k], o[8][k]};
   }
+  weigh_later(later & cast, wi, pdf, bsdf_pdf, batch.size() - first, first, out);
 }
 
 // direct_light's case of a light with no point to reach, for the lanes that ask for it (kToward):
@@ -158,7 +185,9 @@ template <class B>
   const F8 infinity = splat(std::numeric_limits<float>::infinity());
   const F8 t_max = pick(absolute(distance) == infinity, distance, distance * (1.0f - kShadowEpsilon));
   const F8 weight = pick(row(batch, B::kTowardDelta, f) != 0, splat(1.0f), power_heuristic(pdf, bsdf_pdf));
-  const V8 contribution = mul(rows(batch, B::kBeta, f), mul(mul(f_cos, incident), weight / pdf));
+  const V8 unweighted = mul(f_cos, incident);
+  const M8 later = wants & (row(batch, B::kWeighLater, f) != 0);
+  const V8 contribution = pick(later, unweighted, mul(rows(batch, B::kBeta, f), mul(unweighted, weight / pdf)));
   const F8 fields[] = {origin.x, origin.y, origin.z, t_max, contribution.x, contribution.y, contribution.z};
   alignas(32) float o[std::size(fields)][kLanes];
   bool cast_k[kLanes];
@@ -175,6 +204,7 @@ template <class B>
     r.ray = Ray{{o[0][k], o[1][k], o[2][k]}, w, 0.0f, o[3][k], batch.leaves(first + k)};
     r.contribution = {o[4][k], o[5][k], o[6][k]};
   }
+  weigh_later(later & cast, wi, pdf, bsdf_pdf, batch.size() - first, first, out);
 }
 
 }  // namespace lanes

@@ -30,6 +30,7 @@ int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const 
   const int lane = add_surface(surface, p, p_error);
   set(kWantsLight, lane, 0.0f);
   set(kWantsBounce, lane, 0.0f);
+  set(kWeighLater, lane, 0.0f);
   // The kernel reads its block's eight records: those of lanes not (yet) asking for a light are zeros.
   if (lane % lanes::kLanes == 0) std::fill_n(&records_[lane], lanes::kLanes, kNoLight.v);
   records_[lane] = kNoLight.v;

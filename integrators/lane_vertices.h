@@ -18,7 +18,7 @@ struct LaneVertexFields : LambertianSurfaceFields {
   enum Row {
     kBeta = kSurfaceRows,  // three rows, one each below
     kLightUx = kBeta + 3, kLightUy, kPmf, kWantsLight, kBounceUx, kBounceUy, kWantsBounce,
-    kTowardW, kIncident = kTowardW + 3, kTowardDistance = kIncident + 3, kTowardPdf, kTowardDelta, kRows
+    kTowardW, kIncident = kTowardW + 3, kTowardDistance = kIncident + 3, kTowardPdf, kTowardDelta, kWeighLater, kRows
   };
   // kWantsLight: a point on a triangle light (kLightUx, kLightUy, kPmf and the record), or a
   // direction toward a punctual light or the sky (kTowardW to kTowardDelta); 0: none.
@@ -37,6 +37,9 @@ class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneV
   void request_light(int lane, TriangleId leaves, const Rgb& beta, const Emitters::TriangleDraw& light);
   // The lane's light sample toward a punctual light or the sky, drawn already (Emitters::sample_light).
   void request_light_toward(int lane, TriangleId leaves, const Rgb& beta, const EmitterSample& light);
+  // The lane's light sample, asked for already, is weighed by the caller: its LaneLightResult holds
+  // the unweighted contribution and the MIS pieces.
+  void weigh_later(int lane) { set(kWeighLater, lane, 1.0f); }
   // The lane's bounce, with its direction draw.
   void request_bounce(int lane, Vec2 u);
   TriangleId leaves(int lane) const { return leaves_[lane]; }

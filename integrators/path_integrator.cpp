@@ -1,6 +1,7 @@
 #include "integrators/path_integrator.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -76,6 +77,9 @@ struct PathIntegrator::Arrival {
   const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
   const std::optional<Emitters::Pick>* light = nullptr;  // the light those draws chose, where li_packet chose it
   const EnvironmentPortals::View* portal_view = nullptr;  // the sky's portals seen from the hit, where made
+  // Where the vertex leaves how it draws its bounce when casters aim it, for the MIS weight of a
+  // light sample the lanes take (LaneVertexBatch::weigh_later).
+  Bounce* bounce = nullptr;
 };
 
 // The normal a vertex's light is chosen for (a light tree weighs lights by the cosine about it):
@@ -154,15 +158,21 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                                                                       const VertexSamples& u, const Arrival& at,
                                                                       ShadowQuery& shadow, LaneVertexBatch& lanes,
                                                                       int lane) const {
-  // lanes::direct_light's case: no caster aims the bounce and nothing absorbs on either side of the
-  // surface (beer_lambert is 1).
-  if (bounce.share > 0 || !path.media.empty() || material.has_volume()) return false;
+  // lanes::direct_light's case: nothing absorbs on either side of the surface (beer_lambert is 1).
+  // Where casters aim the bounce, the MIS weight needs their density toward the light: li_packet
+  // applies it after the lanes' run (LaneVertexBatch::weigh_later), from the path's throughput held
+  // in shadow.contribution until then.
+  if (!path.media.empty() || material.has_volume()) return false;
+  bool later = false;  // the sample is weighed after the lanes' run
   const Emitters& emitters = scene.emitters();
   Emitters::TriangleDraw draw;
   switch (emitters.triangle_draw(at.light, hit.p, pick_normal(hit), u.light_spare, u.light_point, draw)) {
     case Emitters::Draw::kNothing: return true;
     case Emitters::Draw::kOther: return false;
-    case Emitters::Draw::kOnTriangle: lanes.request_light(lane, hit.triangle, path.beta, draw); break;
+    case Emitters::Draw::kOnTriangle:
+      lanes.request_light(lane, hit.triangle, path.beta, draw);
+      later = bounce.share > 0;
+      break;
     case Emitters::Draw::kToward: {
       // direct_light's sample, whose direction the lanes take on. Without a light tree the light is
       // picked again here (a search of the top-level distribution): handing the sample out of
@@ -173,11 +183,16 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                    : emitters.sample(hit.p, pick_normal(hit), u.light_spare, point, at.sky_light, at.portal_view);
       if (!(ls.pdf > 0)) return true;
       lanes.request_light_toward(lane, hit.triangle, path.beta, ls);
+      later = bounce.share > 0 && !ls.delta;  // a punctual light's weight is 1 whatever aims the bounce
       break;
     }
   }
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
+  if (later) {
+    lanes.weigh_later(lane);
+    shadow.contribution = path.beta;
+  }
   return true;
 }
 
@@ -287,7 +302,11 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error) : -1;
 
   Bounce bounce;
-  if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) choose_bounce(scene, hit, bsdf(), bounce);
+  if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) {
+    choose_bounce(scene, hit, bsdf(), bounce);
+    // A light sample the lanes take is weighed against this strategy after their run.
+    if (in_lanes && bounce.share > 0) *at.bounce = bounce;
+  }
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
@@ -437,6 +456,10 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   LaneLightResult light_results[kLanes];
   LaneBounce bounce_results[kLanes];
   int vertex_lane[kLanes];  // the path lane of each of the batch's lanes
+  // Where casters may aim bounces, each lane's strategy, until the lanes' light sample is weighed.
+  const bool aims_at_casters = caster_share_ > 0 && !scene.casters().empty();
+  std::optional<std::array<Bounce, kLanes>> bounces;
+  if (aims_at_casters) bounces.emplace();
   Step step[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
   const std::optional<Emitters::Pick>* light[kLanes] = {};
@@ -527,6 +550,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       at.dir = unit_dir[i];
       if (found[i]) {
         at.hit = &hits[i];
+        if (aims_at_casters) at.bounce = &(*bounces)[size_t(i)];
         at.draws = &draws[i];
         at.sky_light = sky_light[i];
         at.light = light[i];
@@ -544,10 +568,17 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       const int i = vertex_lane[j];
       if (shadows[i].queued) {
         ShadowQuery& q = shadows[i];
-        q.cast = light_results[j].cast;
+        const LaneLightResult& r = light_results[j];
+        q.cast = r.cast;
         if (q.cast) {
-          q.ray = light_results[j].ray;
-          q.contribution = light_results[j].contribution;
+          q.ray = r.ray;
+          if (aims_at_casters && lanes.row(LaneVertexBatch::kWeighLater)[j] != 0) {
+            // direct_light's weight and products, in its order; q.contribution holds beta.
+            const float weight = power_heuristic(r.pdf, (*bounces)[size_t(i)].pdf(r.bsdf_pdf, r.wi));
+            q.contribution = q.contribution * (r.contribution * (weight / r.pdf));
+          } else {
+            q.contribution = r.contribution;
+          }
           ++counters.shadow;
         }
       }

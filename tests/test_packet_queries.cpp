@@ -158,9 +158,9 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
 
 // The same paths with part of their vertices' work in SIMD lanes (lane_vertices)
 // and without: the same bits, lane by lane, and the same rays counted. Returns how many shadow rays
-// were cast.
-uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200) {
-  PathIntegrator lanes(8, 3), alone(8, 3);
+// were cast. caster_share: as the integrator's (0: no bounce is aimed at casters).
+uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200, float caster_share = 0) {
+  PathIntegrator lanes(8, 3, -1, 0, caster_share), alone(8, 3, -1, 0, caster_share);
   alone.set_lanes(false);
   Pcg32 rng(41, 42);
   RayCounters lane_counters, alone_counters;
@@ -221,7 +221,7 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
 // a double-sided triangle, and by a quad whose emission is a texture (left to the scalar code);
 // paths through glass with absorption and past alpha-blended sheets and spheres (not the lanes'
 // case) in the same packets.
-TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
+SceneDesc lanes_test_scene() {
   SceneDesc desc = lockstep_test_scene();
   const int lamp = test::add_material(desc, Rgb(0.0f), Rgb(8.0f, 6.0f, 4.0f));
   test::add_quad(desc, Vec3(-0.5f, 1.99f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), lamp);  // facing down
@@ -240,7 +240,11 @@ TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
   const int painted = test::add_material(desc, Rgb(0.0f), Rgb(1.0f), true);
   desc.materials[size_t(painted)].emissive_texture.texture = int(desc.textures.size()) - 1;
   test::add_quad(desc, Vec3(-1.95f, -1.0f, -1.5f), Vec3(0, 1, 0), Vec3(0, 0, 1), painted);
-  const Scene scene(std::move(desc), &material_alpha);
+  return desc;
+}
+
+TEST(Lanes, GiveTheScalarPathsBitsLaneByLane) {
+  const Scene scene(lanes_test_scene(), &material_alpha);
   ASSERT_GT(scene.emitters().size(), 2u);
   EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u);
 }
@@ -666,6 +670,23 @@ TEST(Lanes, GiveTheScalarPathsBitsUnderTheSkyAndPunctualLights) {
     ASSERT_EQ(scene.emitters().portals().empty(), !pane);
     EXPECT_GT(expect_lanes_match_scalar_paths(scene), 2000u) << "pane " << pane;
   }
+}
+
+// Where casters aim part of the bounces, the lanes' light samples are weighed against that mixture
+// after their run: the same bits as the scalar code's, for points on lights (the glass sphere and
+// box of lanes_test_scene are the casters) and for directions (a mirror sphere under the sky).
+TEST(Lanes, GiveTheScalarPathsBitsWhereCastersAimTheBounce) {
+  const Scene lit(lanes_test_scene(), &material_alpha);
+  ASSERT_FALSE(lit.casters().empty());
+  EXPECT_GT(expect_lanes_match_scalar_paths(lit, 200, 0.25f), 2000u);
+  SceneDesc open = open_to_the_sky(false);
+  const int mirror = test::add_material(open, Rgb(0.9f));
+  open.materials[size_t(mirror)].metallic = 1;
+  open.materials[size_t(mirror)].roughness = 0;
+  test::add_sphere(open, Vec3(-1.5f, -1.5f, 1), 0.5f, mirror);
+  const Scene sky(std::move(open), &material_alpha);
+  ASSERT_FALSE(sky.casters().empty());
+  EXPECT_GT(expect_lanes_match_scalar_paths(sky, 200, 0.25f), 2000u);
 }
 
 // The same under a light tree larger than the caches, where the lanes choose their lights together

@@ -92,7 +92,11 @@ static const Vec3& pick_normal(const SurfaceHit& hit) { return hit.ns; }
 // crossing (media, eta) worked out for a direction it did not sample.
 void PathIntegrator::choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& b) const {
   if (!(caster_share_ > 0) || scene.casters().empty() || bsdf.is_delta() || !bsdf.reflects_only()) return;
-  scene.casters().view(hit.p, bsdf.normal(), b.casters.emplace());
+  aim_bounce(scene, hit.p, bsdf.normal(), b);
+}
+
+void PathIntegrator::aim_bounce(const Scene& scene, const Vec3& p, const Vec3& n, Bounce& b) const {
+  scene.casters().view(p, n, b.casters.emplace());
   // The full share only where the casters fill about 0.5 sr or more of the view (coverage, the sum
   // of sin^2 of their cones' half-angles, 0.16: one cone of 23 degrees), less in proportion below
   // that: small casters take few of the BSDF's samples, and a quarter of the samples aimed at them
@@ -302,10 +306,16 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error) : -1;
 
   Bounce bounce;
-  if (!in_lanes || (caster_share_ > 0 && !scene.casters().empty())) {
+  if (!in_lanes) {
     choose_bounce(scene, hit, bsdf(), bounce);
-    // A light sample the lanes take is weighed against this strategy after their run.
-    if (in_lanes && bounce.share > 0) *at.bounce = bounce;
+  } else if (caster_share_ > 0 && !scene.casters().empty()) {
+    // choose_bounce's aim, without the Lambertian Bsdf (its lobe reflects only, and is not a delta).
+    aim_bounce(scene, hit.p, Bsdf::reflecting_normal(ns, hit.ng, wo), bounce);
+    // The lanes' light sample and bounce are weighed against this strategy after their run.
+    if (bounce.share > 0)
+      *at.bounce = bounce;
+    else
+      at.bounce->share = 0;
   }
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
@@ -321,9 +331,9 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
-  // A Lambertian lobe's bounce, unless casters aim it, is drawn in lanes; li_packet then finishes it
-  // with scatter().
-  if (in_lanes && !(bounce.share > 0)) {
+  // A Lambertian lobe's bounce, unless aimed at casters, is drawn in lanes; li_packet then finishes
+  // it with scatter() (and the mixture's density, where casters take a share).
+  if (in_lanes && !(bounce.share > 0 && u.lobe < bounce.share)) {
     lanes->request_bounce(lane, u.direction);
     return Step::kInLanes;
   }
@@ -588,8 +598,13 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         bs.wi = b.wi;
         bs.f_cos = b.f_cos;
         bs.pdf = b.pdf;
+        bool sampled = b.sampled;
+        if (sampled && aims_at_casters && (*bounces)[size_t(i)].share > 0) {  // advance's checks, in its order
+          bs.pdf = (*bounces)[size_t(i)].pdf(bs.pdf, bs.wi);
+          sampled = !is_black(bs.f_cos) && bs.pdf > 0;
+        }
         // A Lambertian bounce reflects: the material and side matter only to transmission.
-        step[i] = b.sampled && scatter(paths[live[i]], hits[i], bs, scene.desc().material(hits[i].material), true,
+        step[i] = sampled && scatter(paths[live[i]], hits[i], bs, scene.desc().material(hits[i].material), true,
                                        draws[i].roulette, counters, &b.origin)
                       ? Step::kGoesOn
                       : Step::kEnds;

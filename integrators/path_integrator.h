@@ -79,6 +79,9 @@ class PathIntegrator final : public Integrator {
   // How the vertex at `hit` draws its next direction: from the BSDF alone, or also aimed at casters.
   // Fills `out` in place (a view of the casters is a few hundred bytes, made at every vertex).
   void choose_bounce(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, Bounce& out) const;
+  // choose_bounce's aim at the casters in view from p, for a BSDF of normal n that reflects only
+  // and is not a delta lobe.
+  void aim_bounce(const Scene& scene, const Vec3& p, const Vec3& n, Bounce& out) const;
   RadianceSample finish(Path& path) const;
   // Sends the path on from `hit` along wi, after a bounce or a straight crossing of a thin sheet.
   // origin: the ray's, where the caller offset it already.

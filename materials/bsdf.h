@@ -61,6 +61,8 @@ class Bsdf {
   // shadow ray may cross the sheet with this factor instead of stopping at it. Zero for every other
   // surface. Made without the mixture's other lobes, which it does not need.
   static Rgb straight_through(const SurfaceParams& params, const Vec3& ns, const Vec3& ng, const Vec3& wo, float eta);
+  // normal() of a Bsdf whose parameters transmit nothing, made without it.
+  static Vec3 reflecting_normal(const Vec3& ns, const Vec3& ng, const Vec3& wo) { return facing(ns, ng, wo, false).n; }
 
  private:
   enum Lobe { kMetal, kDielectric, kCoat, kDiffuse, kLobes };

@@ -77,8 +77,9 @@ struct PathIntegrator::Arrival {
   const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
   const std::optional<Emitters::Pick>* light = nullptr;  // the light those draws chose, where li_packet chose it
   const EnvironmentPortals::View* portal_view = nullptr;  // the sky's portals seen from the hit, where made
-  // Where the vertex leaves how it draws its bounce when casters aim it, for the MIS weight of a
-  // light sample the lanes take (LaneVertexBatch::weigh_later).
+  // li_packet's slot for how the vertex draws its bounce, where casters may aim bounces (null
+  // elsewhere): the lanes' light sample (LaneVertexBatch::weigh_later) and bounce are weighed
+  // against it after their run.
   Bounce* bounce = nullptr;
 };
 

@@ -157,6 +157,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
 }
 
 // Inlined in advance, its one caller.
+template <bool kAimsAtCasters>
 [[gnu::always_inline]] inline bool PathIntegrator::queue_direct_light(const Scene& scene, const SurfaceHit& hit,
                                                                       const Bounce& bounce, const Path& path,
                                                                       const MaterialDesc& material,
@@ -176,7 +177,7 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
     case Emitters::Draw::kOther: return false;
     case Emitters::Draw::kOnTriangle:
       lanes.request_light(lane, hit.triangle, path.beta, draw);
-      later = bounce.share > 0;
+      later = kAimsAtCasters && bounce.share > 0;
       break;
     case Emitters::Draw::kToward: {
       // direct_light's sample, whose direction the lanes take on. Without a light tree the light is
@@ -188,13 +189,13 @@ PathIntegrator::ShadowQuery PathIntegrator::direct_light(const Scene& scene, con
                    : emitters.sample(hit.p, pick_normal(hit), u.light_spare, point, at.sky_light, at.portal_view);
       if (!(ls.pdf > 0)) return true;
       lanes.request_light_toward(lane, hit.triangle, path.beta, ls);
-      later = bounce.share > 0 && !ls.delta;  // a punctual light's weight is 1 whatever aims the bounce
+      later = kAimsAtCasters && bounce.share > 0 && !ls.delta;  // a punctual light's weight is 1 whatever aims
       break;
     }
   }
   shadow.queued = true;
   shadow.medium_ior = 1.0f;
-  if (later) {
+  if (kAimsAtCasters && later) {
     lanes.weigh_later(lane);
     shadow.contribution = path.beta;
   }
@@ -211,6 +212,7 @@ bool PathIntegrator::scatters_next(const Path& path) const {
 // start depth): a dimension then means the same decision in every sample of a pixel, and stays
 // stratified across them (pbrt-v4 does the same). li_packet draws them (at.draws) before the lanes
 // shade.
+template <bool kAimsAtCasters>
 PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow,
                                              RayCounters& counters, LaneVertexBatch* lanes) const {
   const SurfaceHit* found = at.hit;
@@ -309,7 +311,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   Bounce bounce;
   if (!in_lanes) {
     choose_bounce(scene, hit, bsdf(), bounce);
-  } else if (caster_share_ > 0 && !scene.casters().empty()) {
+  } else if constexpr (kAimsAtCasters) {
     // choose_bounce's aim, without the Lambertian Bsdf (its lobe reflects only, and is not a delta).
     aim_bounce(scene, hit.p, Bsdf::reflecting_normal(ns, hit.ng, wo), bounce);
     // The lanes' light sample and bounce are weighed against this strategy after their run.
@@ -321,7 +323,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
   if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
-    if (!(in_lanes && queue_direct_light(scene, hit, bounce, path, material, u, at, shadow, *lanes, lane))) {
+    if (!(in_lanes &&
+          queue_direct_light<kAimsAtCasters>(scene, hit, bounce, path, material, u, at, shadow, *lanes, lane))) {
       shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light,
                             at.portal_view);
       if (shadow.cast) {
@@ -334,7 +337,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
 
   // A Lambertian lobe's bounce, unless aimed at casters, is drawn in lanes; li_packet then finishes
   // it with scatter() (and the mixture's density, where casters take a share).
-  if (in_lanes && !(bounce.share > 0 && u.lobe < bounce.share)) {
+  if (in_lanes && !(kAimsAtCasters && bounce.share > 0 && u.lobe < bounce.share)) {
     lanes->request_bounce(lane, u.direction);
     return Step::kInLanes;
   }
@@ -437,12 +440,21 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
 void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
                                RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
   constexpr int kLanes = kPathsInLockstep;
-  if (n > kLanes) {
-    for (int first = 0; first < n; first += kLanes)
-      li_packet(scene, camera_rays + first, samplers + first, std::min(n - first, kLanes), counters,
-                aovs ? aovs + first : nullptr, out + first);
-    return;
+  const bool aims_at_casters = caster_share_ > 0 && !scene.casters().empty();
+  for (int first = 0; first < n; first += kLanes) {
+    const int m = std::min(n - first, kLanes);
+    AovSample* const* lane_aovs = aovs ? aovs + first : nullptr;
+    if (aims_at_casters)
+      li_lockstep<true>(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first);
+    else
+      li_lockstep<false>(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first);
   }
+}
+
+template <bool kAimsAtCasters>
+void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
+                                 RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
+  constexpr int kLanes = kPathsInLockstep;
   Path paths[kLanes];
   int live[kLanes];  // the paths still in flight, in lane order
   for (int k = 0; k < n; ++k) {
@@ -468,9 +480,8 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
   LaneBounce bounce_results[kLanes];
   int vertex_lane[kLanes];  // the path lane of each of the batch's lanes
   // Where casters may aim bounces, each lane's strategy, until the lanes' light sample is weighed.
-  const bool aims_at_casters = caster_share_ > 0 && !scene.casters().empty();
   std::optional<std::array<Bounce, kLanes>> bounces;
-  if (aims_at_casters) bounces.emplace();
+  if constexpr (kAimsAtCasters) bounces.emplace();
   Step step[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
   const std::optional<Emitters::Pick>* light[kLanes] = {};
@@ -561,7 +572,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
       at.dir = unit_dir[i];
       if (found[i]) {
         at.hit = &hits[i];
-        if (aims_at_casters) at.bounce = &(*bounces)[size_t(i)];
+        if constexpr (kAimsAtCasters) at.bounce = &(*bounces)[size_t(i)];
         at.draws = &draws[i];
         at.sky_light = sky_light[i];
         at.light = light[i];
@@ -570,7 +581,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         at.sky_uv = &sky_uv[i];
       }
       const int before = lanes.size();
-      step[i] = advance(scene, paths[live[i]], at, shadows[i], counters, lanes_ ? &lanes : nullptr);
+      step[i] = advance<kAimsAtCasters>(scene, paths[live[i]], at, shadows[i], counters, lanes_ ? &lanes : nullptr);
       if (lanes.size() > before) vertex_lane[before] = i;
     }
     // The Lambertian vertices' light samples and bounces, in SIMD lanes.
@@ -583,7 +594,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         q.cast = r.cast;
         if (q.cast) {
           q.ray = r.ray;
-          if (aims_at_casters && lanes.row(LaneVertexBatch::kWeighLater)[j] != 0) {
+          if (kAimsAtCasters && lanes.row(LaneVertexBatch::kWeighLater)[j] != 0) {
             // direct_light's weight and products, in its order; q.contribution holds beta.
             const float weight = power_heuristic(r.pdf, (*bounces)[size_t(i)].pdf(r.bsdf_pdf, r.wi));
             q.contribution = q.contribution * (r.contribution * (weight / r.pdf));
@@ -600,7 +611,7 @@ void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampl
         bs.f_cos = b.f_cos;
         bs.pdf = b.pdf;
         bool sampled = b.sampled;
-        if (sampled && aims_at_casters && (*bounces)[size_t(i)].share > 0) {  // advance's checks, in its order
+        if (kAimsAtCasters && sampled && (*bounces)[size_t(i)].share > 0) {  // advance's checks, in its order
           bs.pdf = (*bounces)[size_t(i)].pdf(bs.pdf, bs.wi);
           sampled = !is_black(bs.f_cos) && bs.pdf > 0;
         }

@@ -53,9 +53,16 @@ class PathIntegrator final : public Integrator {
   enum class Step { kEnds, kGoesOn, kInLanes };
   // lanes: where a Lambertian vertex takes a lane of it (the last one added), from which its
   // next-event estimation (ShadowQuery::queued) and its bounce (Step::kInLanes) may be asked
-  // instead of direct_light and Bsdf::sample; null: neither.
+  // instead of direct_light and Bsdf::sample; null: neither. kAimsAtCasters: casters may take a
+  // share of the bounces (caster_share_ > 0 and the scene has some); without them, the code that
+  // weighs the lanes' work against that share is left out.
+  template <bool kAimsAtCasters>
   Step advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
                LaneVertexBatch* lanes = nullptr) const;
+  // li_packet for at most kPathsInLockstep paths.
+  template <bool kAimsAtCasters>
+  void li_lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
+                   RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const;
   // The rest of a bounce once its direction is drawn (bs): the throughput, the path's record of the
   // vertex, the next ray (from `origin` where lane_vertices offset it already) and Russian roulette.
   // False when the path ends.
@@ -64,6 +71,7 @@ class PathIntegrator final : public Integrator {
   // Next-event estimation in lane `lane` of `lanes` (lane_vertices) at a vertex with a Lambertian
   // lobe, where the vertex and its light draw allow it: asks the lane for it (true, shadow.queued)
   // or finds there is no light to sample (true); false: direct_light's case.
+  template <bool kAimsAtCasters>
   bool queue_direct_light(const Scene& scene, const SurfaceHit& hit, const Bounce& bounce, const Path& path,
                           const MaterialDesc& material, const VertexSamples& u, const Arrival& at, ShadowQuery& shadow,
                           LaneVertexBatch& lanes, int lane) const;

@@ -189,7 +189,7 @@ template <bool kAimsAtCasters>
                    : emitters.sample(hit.p, pick_normal(hit), u.light_spare, point, at.sky_light, at.portal_view);
       if (!(ls.pdf > 0)) return true;
       lanes.request_light_toward(lane, hit.triangle, path.beta, ls);
-      later = kAimsAtCasters && bounce.share > 0 && !ls.delta;  // a punctual light's weight is 1 whatever aims
+      later = kAimsAtCasters && bounce.share > 0 && !ls.delta;  // (a punctual light's weight is 1)
       break;
     }
   }

@@ -480,7 +480,11 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
   LaneBounce bounce_results[kLanes];
   int vertex_lane[kLanes];  // the path lane of each of the batch's lanes
   // Where casters may aim bounces, each lane's strategy, until the lanes' light sample is weighed.
-  std::optional<std::array<Bounce, kLanes>> bounces;
+  struct LaneBounces {
+    LaneBounces() {}  // user-provided, so that emplace() does not zero the 14 KiB first
+    Bounce lane[kLanes];
+  };
+  std::optional<LaneBounces> bounces;
   if constexpr (kAimsAtCasters) bounces.emplace();
   Step step[kLanes];
   std::optional<Emitters::Pick> picked[kLanes];  // the lanes' lights, where li_packet chooses them
@@ -572,7 +576,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
       at.dir = unit_dir[i];
       if (found[i]) {
         at.hit = &hits[i];
-        if constexpr (kAimsAtCasters) at.bounce = &(*bounces)[size_t(i)];
+        if constexpr (kAimsAtCasters) at.bounce = &bounces->lane[i];
         at.draws = &draws[i];
         at.sky_light = sky_light[i];
         at.light = light[i];
@@ -596,7 +600,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
           q.ray = r.ray;
           if (kAimsAtCasters && lanes.row(LaneVertexBatch::kWeighLater)[j] != 0) {
             // direct_light's weight and products, in its order; q.contribution holds beta.
-            const float weight = power_heuristic(r.pdf, (*bounces)[size_t(i)].pdf(r.bsdf_pdf, r.wi));
+            const float weight = power_heuristic(r.pdf, bounces->lane[i].pdf(r.bsdf_pdf, r.wi));
             q.contribution = q.contribution * (r.contribution * (weight / r.pdf));
           } else {
             q.contribution = r.contribution;
@@ -611,8 +615,8 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
         bs.f_cos = b.f_cos;
         bs.pdf = b.pdf;
         bool sampled = b.sampled;
-        if (kAimsAtCasters && sampled && (*bounces)[size_t(i)].share > 0) {  // advance's checks, in its order
-          bs.pdf = (*bounces)[size_t(i)].pdf(bs.pdf, bs.wi);
+        if (kAimsAtCasters && sampled && bounces->lane[i].share > 0) {  // advance's checks, in its order
+          bs.pdf = bounces->lane[i].pdf(bs.pdf, bs.wi);
           sampled = !is_black(bs.f_cos) && bs.pdf > 0;
         }
         // A Lambertian bounce reflects: the material and side matter only to transmission.

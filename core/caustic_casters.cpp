@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/constants.h"
+#include "core/float8.h"
 #include "core/frame.h"
 #include "core/sampling.h"
 
@@ -74,43 +76,54 @@ CausticCasters::CausticCasters(const SceneDesc& desc) {
                    [](const Sphere& a, const Sphere& b) { return a.radius > b.radius; });
   if (casters.size() > size_t(kMaxCasters)) casters.resize(size_t(kMaxCasters));
   for (const Sphere& c : casters) {
-    cx_.push_back(c.center.x);
-    cy_.push_back(c.center.y);
-    cz_.push_back(c.center.z);
-    radius_.push_back(c.radius);
+    cx_[size_t(count_)] = c.center.x;
+    cy_[size_t(count_)] = c.center.y;
+    cz_[size_t(count_)] = c.center.z;
+    radius_[size_t(count_)] = c.radius;
+    ++count_;
   }
 }
 
+// The kMaxCasters slots are the eight lanes of one Float8 (core/float8.h): each lane rounds as the
+// formula for one slot would, so the view is the one a loop over the slots makes, bit for bit.
+static_assert(CausticCasters::kMaxCasters == 8, "view and pdf take the slots as the eight lanes of a Float8");
+
+namespace {
+
+Float8 load8(const float* x) {
+  Float8 r;
+  std::memcpy(&r.v, x, sizeof(r.v));
+  return r;
+}
+
+void store8(float* x, Float8 a) { std::memcpy(x, &a.v, sizeof(a.v)); }
+
+}  // namespace
+
 void CausticCasters::view(const Vec3& p, const Vec3& n, CasterView& v) const {
-  const int slots = static_cast<int>(radius_.size());
+  const Float8 dx = load8(cx_.data()) - Float8(p.x), dy = load8(cy_.data()) - Float8(p.y),
+               dz = load8(cz_.data()) - Float8(p.z);
+  const Float8 d2 = dx * dx + dy * dy + dz * dz;
+  const Float8 r = load8(radius_.data()), r2 = r * r;
+  const Float8 raw_sin2 = r2 / d2;  // +inf at the centre itself, 0 (NaN where p is the origin) in an empty slot
+  // Outside the sphere, a cone between a microradian and 45 degrees, and some of it above the
+  // tangent plane: the axis's angle with the plane is under the half-angle, dot(n, d) > -r.
+  const Mask8 aimed = both(both(raw_sin2 < Float8(kMaxSin2), raw_sin2 > Float8(kMinSin2)),
+                           dx * Float8(n.x) + dy * Float8(n.y) + dz * Float8(n.z) > Float8(0.0f) - r);
+  const Float8 sin2 = select(aimed, raw_sin2, Float8(kMaxSin2));  // kMaxSin2 keeps the arithmetic finite
+  const Float8 omc = sin2 / (Float8(1.0f) + vsqrt(Float8(1.0f) - sin2));
+  store8(v.dx_, dx);
+  store8(v.dy_, dy);
+  store8(v.dz_, dz);
+  store8(v.edge_, d2 - r2);
+  store8(v.one_minus_cos_max_, omc);
+  store8(v.density_, select(aimed, Float8(1.0f) / (Float8(kTwoPi) * omc), Float8(0.0f)));
   float aimed_sin2[kMaxCasters];  // sin^2 of an aimed cone's half-angle, else 0
-  // No sums in this loop (float sums may not be reordered), so that it vectorises.
-  for (int k = 0; k < slots; ++k) {
-    const float dx = cx_[k] - p.x, dy = cy_[k] - p.y, dz = cz_[k] - p.z;
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    const float r = radius_[k], r2 = r * r;
-    const float raw_sin2 = r2 / d2;  // +inf at the centre itself: not aimed
-    // Outside the sphere, a cone between a microradian and 45 degrees, and some of it above the
-    // tangent plane: the axis's angle with the plane is under the half-angle, dot(n, d) > -r.
-    const bool aimed = raw_sin2 < kMaxSin2 && raw_sin2 > kMinSin2 && dx * n.x + dy * n.y + dz * n.z > -r;
-    const float sin2 = aimed ? raw_sin2 : kMaxSin2;  // kMaxSin2 keeps the arithmetic finite
-    const float omc = sin2 / (1.0f + std::sqrt(1.0f - sin2));
-    v.dx_[k] = dx;
-    v.dy_[k] = dy;
-    v.dz_[k] = dz;
-    v.edge_[k] = d2 - r2;
-    v.one_minus_cos_max_[k] = omc;
-    v.density_[k] = aimed ? 1.0f / (kTwoPi * omc) : 0.0f;
-    aimed_sin2[k] = aimed ? sin2 : 0.0f;
-  }
-  int count = 0;
+  store8(aimed_sin2, select(aimed, sin2, Float8(0.0f)));
   float coverage = 0;
-  for (int k = 0; k < slots; ++k) {
-    count += aimed_sin2[k] > 0 ? 1 : 0;
-    coverage += aimed_sin2[k];
-  }
-  v.slots_ = slots;
-  v.count_ = count;
+  for (int k = 0; k < kMaxCasters; ++k) coverage += aimed_sin2[k];  // in slot order; the empty slots add +0
+  v.slots_ = count_;
+  v.count_ = count_lanes(aimed);
   v.coverage_ = coverage;
 }
 
@@ -125,14 +138,14 @@ Vec3 CasterView::sample(float u_pick, Vec2 u_dir, int* cone) const {
 }
 
 float CasterView::pdf(const Vec3& w, int drawn_in) const {
-  float density[kMaxCasters];  // the cones' terms, summed after the loop so that it vectorises
-  for (int k = 0; k < slots_; ++k) {
-    const float t = w.x * dx_[k] + w.y * dy_[k] + w.z * dz_[k];
-    const bool inside = k == drawn_in || (t > 0 && t * t >= edge_[k]);
-    density[k] = inside ? density_[k] : 0.0f;
-  }
+  const Float8 t = Float8(w.x) * load8(dx_) + Float8(w.y) * load8(dy_) + Float8(w.z) * load8(dz_);
+  const Mask8Lanes slot{0, 1, 2, 3, 4, 5, 6, 7};
+  const Mask8 in_cone = both(t > Float8(0.0f), t * t >= load8(edge_));
+  const Mask8 inside{(slot == (Mask8Lanes{} + drawn_in)) | in_cone.v};
+  float density[kMaxCasters];  // the cones' terms, summed in slot order
+  store8(density, select(inside, load8(density_), Float8(0.0f)));
   float sum = 0;
-  for (int k = 0; k < slots_; ++k) sum += density[k];
+  for (int k = 0; k < kMaxCasters; ++k) sum += density[k];  // the empty slots' densities are +0
   return count_ > 0 ? sum / float(count_) : 0.0f;
 }
 

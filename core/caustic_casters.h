@@ -2,6 +2,7 @@
 // a path can aim its bounce directions at, so that light reaching a diffuse surface through them is found.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/scene_desc.h"
@@ -36,8 +37,8 @@ class CasterView {
   // Slot k holds caster k: the vector d from the shading point to its centre, |d|^2 - r^2 (w is in
   // the cone when dot(w, d) > 0 and dot(w, d)^2 >= that, with no square root), 1 - cos of the
   // half-angle, and the cone's density 1 / solid angle, 0 when the caster is not worth aiming at
-  // from here. Branch-free loops over the slots, so the compiler can vectorise them. Left
-  // uninitialised beyond slots_: a view is made at every vertex of a scene with casters.
+  // from here. view() and pdf() take all kMaxCasters slots at once, as SIMD lanes (core/float8.h):
+  // the slots past slots_ hold no caster (radius 0), and their density is 0.
   float dx_[kMaxCasters], dy_[kMaxCasters], dz_[kMaxCasters], edge_[kMaxCasters];
   float one_minus_cos_max_[kMaxCasters], density_[kMaxCasters];
   int slots_ = 0;
@@ -67,8 +68,8 @@ class CausticCasters {
   CausticCasters() = default;
   explicit CausticCasters(const SceneDesc& desc);
 
-  bool empty() const { return radius_.empty(); }
-  size_t size() const { return radius_.size(); }
+  bool empty() const { return count_ == 0; }
+  size_t size() const { return size_t(count_); }
   // The casters worth aiming at from point p on a surface with unit normal n (the side light is
   // reflected to): those whose bounding sphere subtends a cone of half-angle under 45 degrees (a
   // wider cone is found often enough by the BSDF's own samples, and p is outside the sphere) and
@@ -82,8 +83,10 @@ class CausticCasters {
   static constexpr int kMinSmoothFraction = 4;
 
  private:
-  // Each caster's bounding sphere, by component for view()'s vectorised loop.
-  std::vector<float> cx_, cy_, cz_, radius_;
+  // Each caster's bounding sphere, by component for view()'s vectorised loop; the slots past
+  // count_ are zeros, which no view aims at.
+  std::array<float, kMaxCasters> cx_{}, cy_{}, cz_{}, radius_{};
+  int count_ = 0;
 };
 
 }  // namespace prism

@@ -40,6 +40,18 @@ struct Mask8 {
 [[gnu::always_inline]] inline Mask8 operator>(Float8 a, Float8 b) { return {a.v > b.v}; }
 [[gnu::always_inline]] inline Mask8 operator>=(Float8 a, Float8 b) { return {a.v >= b.v}; }
 [[gnu::always_inline]] inline Mask8 both(Mask8 a, Mask8 b) { return {a.v & b.v}; }
+// How many lanes of m hold.
+[[gnu::always_inline]] inline int count_lanes(Mask8 m) {
+#if defined(__SSE2__)
+  const __m128 lo = reinterpret_cast<__m128>(__builtin_shufflevector(m.v, m.v, 0, 1, 2, 3));
+  const __m128 hi = reinterpret_cast<__m128>(__builtin_shufflevector(m.v, m.v, 4, 5, 6, 7));
+  return __builtin_popcount(unsigned(_mm_movemask_ps(lo)) | unsigned(_mm_movemask_ps(hi)) << 4);
+#else
+  int n = 0;
+  for (int k = 0; k < 8; ++k) n += m.v[k] != 0;
+  return n;
+#endif
+}
 [[gnu::always_inline]] inline Float8 select(Mask8 m, Float8 a, Float8 b) {
   const Mask8Lanes bits = (m.v & reinterpret_cast<Mask8Lanes>(a.v)) | (~m.v & reinterpret_cast<Mask8Lanes>(b.v));
   return Float8(reinterpret_cast<Float8Lanes>(bits));

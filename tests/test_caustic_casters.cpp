@@ -2,7 +2,9 @@
 // path tracer aiming at them keeps every mean where it was.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -152,6 +154,72 @@ TEST(CasterView, DensityIntegratesToOneAndMatchesWhereItsSamplesFall) {
   const double se = std::hypot(region_integral.standard_error(), region_hits.standard_error());
   EXPECT_GT(region_hits.mean(), 0.05);
   EXPECT_NEAR(region_hits.mean(), region_integral.mean(), test::kSigmas * se);
+}
+
+// CausticCasters::view and CasterView::pdf take the slots as SIMD lanes, empty slots included. Slot
+// by slot in floats, the cone formulas (view's comments) must give the same bits: count, coverage
+// and the density toward any direction, with one caster or all kMaxCasters.
+TEST(CasterView, LanesGiveTheSlotBySlotBits) {
+  struct Sphere {
+    Vec3 c;
+    float r;
+  };
+  Pcg32 rng(5, 6);
+  for (const int n : {1, 3, CausticCasters::kMaxCasters}) {
+    SceneDesc desc;
+    const int mirror = add_metal(desc, 0.0f);
+    std::vector<Sphere> spheres;
+    for (int k = 0; k < n; ++k) {  // radii falling, so that the casters' slots are the spheres' order
+      spheres.push_back({Vec3(4 * rng.next_float() - 2, 4 * rng.next_float() - 2, 4 * rng.next_float() - 2),
+                         0.5f - 0.05f * float(k)});
+      test::add_sphere(desc, spheres.back().c, spheres.back().r, mirror);
+    }
+    const CausticCasters casters(desc);
+    ASSERT_EQ(casters.size(), size_t(n));
+    int aimed_views = 0;
+    for (int i = 0; i < 2000; ++i) {
+      // The first view is from the origin, where the empty slots' sin^2 is 0 / 0.
+      Vec3 p(0.0f);
+      if (i > 0)
+        for (int c = 0; c < 3; ++c) p[c] = 6 * rng.next_float() - 3;
+      const Vec3 nrm = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      CasterView v;
+      casters.view(p, nrm, v);
+      int count = 0;
+      float coverage = 0, density[CausticCasters::kMaxCasters], dx[CausticCasters::kMaxCasters],
+            dy[CausticCasters::kMaxCasters], dz[CausticCasters::kMaxCasters], edge[CausticCasters::kMaxCasters];
+      for (int k = 0; k < n; ++k) {
+        const Sphere& s = spheres[size_t(k)];
+        dx[k] = s.c.x - p.x, dy[k] = s.c.y - p.y, dz[k] = s.c.z - p.z;
+        const float d2 = dx[k] * dx[k] + dy[k] * dy[k] + dz[k] * dz[k], r2 = s.r * s.r, sin2 = r2 / d2;
+        edge[k] = d2 - r2;
+        const bool aimed = sin2 < 0.5f && sin2 > 1e-12f && dx[k] * nrm.x + dy[k] * nrm.y + dz[k] * nrm.z > -s.r;
+        density[k] = aimed ? 1.0f / (kTwoPi * (sin2 / (1.0f + std::sqrt(1.0f - sin2)))) : 0.0f;
+        count += aimed;
+        coverage += aimed ? sin2 : 0.0f;
+      }
+      ASSERT_EQ(v.size(), count);
+      ASSERT_EQ(std::bit_cast<uint32_t>(v.coverage()), std::bit_cast<uint32_t>(coverage));
+      aimed_views += count > 0;
+      for (int j = 0; j < 8; ++j) {
+        // Toward a caster's centre (inside its cone, where aimed), or anywhere.
+        const int toward = j < n ? j : -1;
+        const Vec3 w = toward >= 0 ? normalize(Vec3(dx[j], dy[j], dz[j]))
+                                   : sample_uniform_sphere({rng.next_float(), rng.next_float()});
+        for (const int drawn_in : {-1, toward}) {
+          float sum = 0;
+          for (int k = 0; k < n; ++k) {
+            const float t = w.x * dx[k] + w.y * dy[k] + w.z * dz[k];
+            sum += k == drawn_in || (t > 0 && t * t >= edge[k]) ? density[k] : 0.0f;
+          }
+          const float expected = count > 0 ? sum / float(count) : 0.0f;
+          ASSERT_EQ(std::bit_cast<uint32_t>(v.pdf(w, drawn_in)), std::bit_cast<uint32_t>(expected))
+              << n << " casters, view " << i << ", direction " << j;
+        }
+      }
+    }
+    EXPECT_GT(aimed_views, 200) << "too few views aim at a caster to test them";
+  }
 }
 
 TEST(CasterAiming, KeepsTheFurnaceExact) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "core/constants.h"
@@ -87,18 +86,6 @@ CausticCasters::CausticCasters(const SceneDesc& desc) {
 // The kMaxCasters slots are the eight lanes of one Float8 (core/float8.h): each lane rounds as the
 // formula for one slot would, so the view is the one a loop over the slots makes, bit for bit.
 static_assert(CausticCasters::kMaxCasters == 8, "view and pdf take the slots as the eight lanes of a Float8");
-
-namespace {
-
-Float8 load8(const float* x) {
-  Float8 r;
-  std::memcpy(&r.v, x, sizeof(r.v));
-  return r;
-}
-
-void store8(float* x, Float8 a) { std::memcpy(x, &a.v, sizeof(a.v)); }
-
-}  // namespace
 
 void CausticCasters::view(const Vec3& p, const Vec3& n, CasterView& v) const {
   const Float8 dx = load8(cx_.data()) - Float8(p.x), dy = load8(cy_.data()) - Float8(p.y),

@@ -40,6 +40,13 @@ struct Mask8 {
 [[gnu::always_inline]] inline Mask8 operator>(Float8 a, Float8 b) { return {a.v > b.v}; }
 [[gnu::always_inline]] inline Mask8 operator>=(Float8 a, Float8 b) { return {a.v >= b.v}; }
 [[gnu::always_inline]] inline Mask8 both(Mask8 a, Mask8 b) { return {a.v & b.v}; }
+// Eight consecutive floats as lanes 0-7, and back.
+[[gnu::always_inline]] inline Float8 load8(const float* x) {
+  Float8 r;
+  std::memcpy(&r.v, x, sizeof(r.v));
+  return r;
+}
+[[gnu::always_inline]] inline void store8(float* x, Float8 a) { std::memcpy(x, &a.v, sizeof(a.v)); }
 // How many lanes of m hold.
 [[gnu::always_inline]] inline int count_lanes(Mask8 m) {
 #if defined(__SSE2__)

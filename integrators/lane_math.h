@@ -123,13 +123,9 @@ template <size_t N>
 }
 
 // Lanes first to first + 7 of a row of floats.
-[[gnu::always_inline]] inline F8 load(const float* row, int first) {
-  F8 v;
-  std::memcpy(&v, row + first, sizeof v);
-  return v;
-}
+[[gnu::always_inline]] inline F8 load(const float* row, int first) { return load8(row + first).v; }
 // And back: eight lanes into out[0..7].
-[[gnu::always_inline]] inline void store(F8 v, float* out) { std::memcpy(out, &v, sizeof v); }
+[[gnu::always_inline]] inline void store(F8 v, float* out) { store8(out, Float8(v)); }
 // Of a batch's row r (LaneRows), and of rows r to r + 2 as vectors.
 template <class Batch>
 [[gnu::always_inline]] inline F8 row(const Batch& b, int r, int first) {

@@ -1,7 +1,6 @@
 #include "integrators/path_integrator.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 

@@ -65,6 +65,13 @@ struct PathIntegrator::Bounce {
   float pdf(float bsdf_pdf, const Vec3& w, int drawn_in = -1) const {
     return share > 0 ? (1 - share) * bsdf_pdf + share * casters->pdf(w, drawn_in) : bsdf_pdf;
   }
+  // Where casters take a share: bs, drawn by either strategy, gets the mixture's density (a delta
+  // lobe's direction is one the casters' cones draw with probability 0). False where it carries
+  // nothing or cannot be drawn.
+  bool mix(BsdfSample& bs, int drawn_in = -1) const {
+    bs.pdf = bs.delta ? (1 - share) * bs.pdf : pdf(bs.pdf, bs.wi, drawn_in);
+    return !is_black(bs.f_cos) && bs.pdf > 0;
+  }
 };
 
 // Where a lane's ray arrived, with what li_packet worked out for all lanes before any shades.
@@ -103,7 +110,7 @@ void PathIntegrator::aim_bounce(const Scene& scene, const Vec3& p, const Vec3& n
   // costs the rest of the integrand more than their caustics gain (docs/PERFORMANCE.md: 64 small
   // mirror balls). Any share that depends on the vertex alone keeps the estimate unbiased.
   constexpr float kFullShareCoverage = 0.16f;
-  if (!b.casters->empty()) b.share = caster_share_ * std::min(1.0f, b.casters->coverage() / kFullShareCoverage);
+  b.share = b.casters->empty() ? 0.0f : caster_share_ * std::min(1.0f, b.casters->coverage() / kFullShareCoverage);
 }
 
 // Light arriving at `hit` from one sampled light, through the BSDF, attenuated by the medium on
@@ -307,17 +314,15 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   };
   const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error) : -1;
 
-  Bounce bounce;
+  // A vertex in the lanes, where casters may aim bounces, makes its strategy in li_packet's slot for
+  // it: the lanes' light sample and bounce are weighed against it after their run.
+  Bounce own;
+  Bounce& bounce = kAimsAtCasters && in_lanes ? *at.bounce : own;
   if (!in_lanes) {
     choose_bounce(scene, hit, bsdf(), bounce);
   } else if constexpr (kAimsAtCasters) {
     // choose_bounce's aim, without the Lambertian Bsdf (its lobe reflects only, and is not a delta).
     aim_bounce(scene, hit.p, Bsdf::reflecting_normal(ns, hit.ng, wo), bounce);
-    // The lanes' light sample and bounce are weighed against this strategy after their run.
-    if (bounce.share > 0)
-      *at.bounce = bounce;
-    else
-      at.bounce->share = 0;
   }
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
@@ -355,11 +360,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     bs = bsdf().sample(u_lobe, u.direction);
   }
   if (!bs) return Step::kEnds;
-  if (bounce.share > 0) {
-    // A delta lobe's direction is one the casters' cones draw with probability 0.
-    bs->pdf = bs->delta ? (1 - bounce.share) * bs->pdf : bounce.pdf(bs->pdf, bs->wi, cone);
-    if (is_black(bs->f_cos) || !(bs->pdf > 0)) return Step::kEnds;
-  }
+  if (bounce.share > 0 && !bounce.mix(*bs, cone)) return Step::kEnds;
   return scatter(path, hit, *bs, material, from_front, u.roulette, counters) ? Step::kGoesOn : Step::kEnds;
 }
 
@@ -614,10 +615,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
         bs.f_cos = b.f_cos;
         bs.pdf = b.pdf;
         bool sampled = b.sampled;
-        if (kAimsAtCasters && sampled && bounces->lane[i].share > 0) {  // advance's checks, in its order
-          bs.pdf = bounces->lane[i].pdf(bs.pdf, bs.wi);
-          sampled = !is_black(bs.f_cos) && bs.pdf > 0;
-        }
+        if (kAimsAtCasters && sampled && bounces->lane[i].share > 0) sampled = bounces->lane[i].mix(bs);
         // A Lambertian bounce reflects: the material and side matter only to transmission.
         step[i] = sampled && scatter(paths[live[i]], hits[i], bs, scene.desc().material(hits[i].material), true,
                                        draws[i].roulette, counters, &b.origin)

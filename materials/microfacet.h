@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/constants.h"
+#include "core/sampling.h"
 #include "core/vec3.h"
 
 namespace prism {
@@ -61,10 +62,12 @@ class GgxDistribution {
     const float len2 = vh.x * vh.x + vh.y * vh.y;
     const Vec3 t1 = len2 > 0 ? Vec3(-vh.y, vh.x, 0) / std::sqrt(len2) : Vec3(1, 0, 0);
     const Vec3 t2 = cross(vh, t1);
-    // Uniform point on the projected disk, warped to the visible half.
-    const float r = std::sqrt(u.x), phi = kTwoPi * u.y;
-    const float p1 = r * std::cos(phi);
-    float p2 = r * std::sin(phi);
+    // Uniform point on the projected disk, warped to the visible half. The disk point is Shirley and
+    // Chiu's concentric map's rather than Heitz's polar one (both uniform): it keeps the draws'
+    // stratification, and its sine and cosine are the SIMD lanes' bits too (lane_coated_lobe.h).
+    const Vec2 d = sample_uniform_disk_concentric(u);
+    const float p1 = d.x;
+    float p2 = d.y;
     const float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
     const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2));

@@ -1,4 +1,4 @@
-// LaneBounce, lanes::bounce: a Lambertian vertex's bounce drawn in lanes.
+// LaneBounce, lanes::bounce: a Lambertian or coated vertex's bounce drawn in lanes.
 #pragma once
 
 #include <iterator>
@@ -6,12 +6,13 @@
 #include "core/constants.h"
 #include "core/sampling.h"
 #include "core/vec3.h"
+#include "integrators/lane_coated_lobe.h"
 #include "integrators/lane_lambertian_lobe.h"
 #include "integrators/lane_math.h"
 
 namespace prism {
 
-// What Bsdf::sample gives for the vertex's Lambertian lobe (sampled false where it gives nothing),
+// What Bsdf::sample gives for the vertex's Lambertian or coated lobes (sampled false where it gives nothing),
 // and the origin spawn_ray would give the ray leaving the hit along wi.
 struct LaneBounce {
   Vec3 wi, origin;
@@ -25,9 +26,11 @@ namespace lanes {
 // For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it
 // (kWantsBounce), bit for bit what Bsdf::sample and spawn_ray make of the bounce: the
 // cosine-weighted direction (sample_cosine_hemisphere, through the concentric map), its value and
-// density, Bsdf::sample's checks, and the next ray's origin.
-template <class B>
-[[gnu::always_inline]] inline void bounce(const B& batch, int first, const Lobe& lobe, LaneBounce* out) {
+// density, Bsdf::sample's checks, and the next ray's origin; at coated lanes, the mixture's sample
+// (lanes::coated_sample) from the same disk point (kCoated: the block may hold coated lanes).
+template <bool kCoated, class B>
+[[gnu::always_inline]] inline void bounce(const B& batch, int first, const Lobe& lobe, const Coats& coats,
+                                          LaneBounce* out) {
   const int f = first;
   const V8 ng = rows(batch, B::kNg, f), p = rows(batch, B::kP, f), p_error = rows(batch, B::kPError, f);
   const V8 albedo_f = rows(batch, B::kF, f);
@@ -44,11 +47,20 @@ template <class B>
   const F8 below = splat(1.0f) - dx * dx - dy * dy;
   const F8 z = root(pick(splat(0.0f) < below, below, splat(0.0f)));
   // Frame::to_world, Lambertian's f |cos| and density, and Bsdf::consistent.
-  const V8 wi = add(add(mul(lobe.s, dx), mul(lobe.t, dy)), mul(lobe.n, z));
-  const F8 pdf = pick(z < 0, splat(0.0f), z) * splat(kInvPi);
-  const V8 f_cos = mul(albedo_f, absolute(z));
-  const M8 sampled = (row(batch, B::kWantsBounce, f) != 0) & lobe.valid & (pdf > 0) &
-                     consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & any_nonzero(f_cos);
+  V8 wi = add(add(mul(lobe.s, dx), mul(lobe.t, dy)), mul(lobe.n, z));
+  F8 pdf = pick(z < 0, splat(0.0f), z) * splat(kInvPi);
+  V8 f_cos = mul(albedo_f, absolute(z));
+  const M8 wants = row(batch, B::kWantsBounce, f) != 0;
+  M8 sampled = wants & lobe.valid & (pdf > 0) & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) &
+               any_nonzero(f_cos);
+  if (kCoated && any(coats.coated & wants)) {
+    const CoatedSample c =
+        coated_sample(lobe, coats.wo, albedo_f, coats.mix, row(batch, B::kBounceULobe, f), dx, dy, V8{dx, dy, z});
+    wi = pick(coats.coated, c.wi, wi);
+    f_cos = pick(coats.coated, c.f_cos, f_cos);
+    pdf = pick(coats.coated, c.pdf, pdf);
+    sampled = (coats.coated & wants & c.sampled) | (~coats.coated & sampled);
+  }
   // spawn_ray's origin.
   const V8 origin = offset_ray_origin(p, p_error, ng, wi);
   const F8 fields[] = {wi.x, wi.y, wi.z, origin.x, origin.y, origin.z, f_cos.x, f_cos.y, f_cos.z, pdf};

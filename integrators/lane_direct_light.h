@@ -1,4 +1,4 @@
-// LaneLightResult, lanes::direct_light: next-event estimation at Lambertian vertices, in lanes.
+// LaneLightResult, lanes::direct_light: next-event estimation at Lambertian and coated vertices, in lanes.
 #pragma once
 
 #include <cstring>
@@ -8,6 +8,7 @@
 #include "core/constants.h"
 #include "core/emitters.h"
 #include "core/ray.h"
+#include "integrators/lane_coated_lobe.h"
 #include "integrators/lane_lambertian_lobe.h"
 #include "integrators/lane_math.h"
 #include "integrators/lane_spherical_triangle.h"
@@ -27,18 +28,6 @@ struct LaneLightResult {
 };
 
 namespace lanes {
-
-// Bsdf::evaluate for the Lambertian lobe alone (f: albedo / pi): consistent(), then f |cos| and the
-// cosine density, both zero where wi is below the lobe or the lobe is not valid.
-struct LobeValue {
-  V8 f_cos;
-  F8 pdf;
-};
-[[gnu::always_inline]] inline LobeValue lambertian_value(const Lobe& lobe, const V8& f, const V8& wi) {
-  const F8 z = dot(wi, lobe.n);
-  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
-  return {pick(above, mul(f, absolute(z)), V8{}), pick(above, z * splat(kInvPi), splat(0.0f))};
-}
 
 // power_heuristic (core/sampling.h).
 [[gnu::always_inline]] inline F8 power_heuristic(F8 pdf_a, F8 pdf_b) {
@@ -68,10 +57,12 @@ struct LobeValue {
 // For lanes first to first + 7 of a batch (LaneVertexBatch) whose lanes ask for it (kWantsLight),
 // what PathIntegrator::direct_light gives, bit for bit: the light sample's point, error bound and
 // density (Emitters::sample_light: by solid angle near the light where that pays, else by area),
-// the emitted radiance, the lobe's value and density (Bsdf::evaluate), the shadow ray
-// (spawn_ray_between) and the power-heuristic weight. Outside every volume only: no medium absorbs.
-template <class B>
-[[gnu::always_inline]] inline void direct_light(const B& batch, int first, const Lobe& lobe, LaneLightResult* out) {
+// the emitted radiance, the surface's value and density (Bsdf::evaluate, of the Lambertian lobe or
+// the coated mixture), the shadow ray (spawn_ray_between) and the power-heuristic weight. Outside
+// every volume only: no medium absorbs. kCoated: the block may hold coated lanes.
+template <bool kCoated, class B>
+[[gnu::always_inline]] inline void direct_light(const B& batch, int first, const Lobe& lobe, const Coats& coats,
+                                               LaneLightResult* out) {
   const int f = first;
   // The lights' constants, from their records (Emitters::LaneRecord).
   using R = Emitters::LaneRecord;
@@ -140,7 +131,7 @@ template <class B>
   const V8 back{-wi.x, -wi.y, -wi.z};
   const M8 emits = (l.double_sided != 0) | ~(dot(l.light_n, back) <= 0);
   const V8 incident = pick(emits, l.emission, V8{});
-  const auto [f_cos, bsdf_pdf] = lambertian_value(lobe, l.f, wi);
+  const auto [f_cos, bsdf_pdf] = surface_value<kCoated>(lobe, coats, l.f, wi);
   const M8 cast = wants & at.drawn & (pdf > 0) & any_nonzero(incident) & any_nonzero(f_cos);
   // spawn_ray_between: each end offset off its own surface toward the other.
   const V8 origin = offset_ray_origin(l.p, l.p_error, rows(batch, B::kNg, f), to_light);
@@ -172,14 +163,14 @@ template <class B>
 // PathIntegrator::direct_light gives, bit for bit: the lobe's value, the shadow ray
 // (spawn_ray_toward) and the weight, 1 for a punctual light (no MIS), else the power heuristic.
 // It writes the results of those lanes only.
-template <class B>
+template <bool kCoated, class B>
 [[gnu::always_inline]] inline void direct_light_toward(const B& batch, int first, const Lobe& lobe,
-                                                       LaneLightResult* out) {
+                                                       const Coats& coats, LaneLightResult* out) {
   const int f = first;
   const V8 wi = rows(batch, B::kTowardW, f), incident = rows(batch, B::kIncident, f);
   const F8 distance = row(batch, B::kTowardDistance, f), pdf = row(batch, B::kTowardPdf, f);
   const M8 wants = row(batch, B::kWantsLight, f) == B::kToward;
-  const auto [f_cos, bsdf_pdf] = lambertian_value(lobe, rows(batch, B::kF, f), wi);
+  const auto [f_cos, bsdf_pdf] = surface_value<kCoated>(lobe, coats, rows(batch, B::kF, f), wi);
   const M8 cast = wants & any_nonzero(incident) & any_nonzero(f_cos);
   const V8 origin = offset_ray_origin(rows(batch, B::kP, f), rows(batch, B::kPError, f), rows(batch, B::kNg, f), wi);
   const F8 infinity = splat(std::numeric_limits<float>::infinity());

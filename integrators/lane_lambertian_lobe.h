@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/constants.h"
 #include "core/vec3.h"
 #include "integrators/lane_math.h"
 #include "integrators/lane_rows.h"
@@ -93,6 +94,19 @@ template <class Batch>
 [[gnu::always_inline]] inline Lobe lambertian_lobe(const Batch& batch, int first) {
   using F = LambertianSurfaceFields;
   return lambertian_lobe(rows(batch, F::kNs, first), rows(batch, F::kNg, first), rows(batch, F::kWo, first));
+}
+
+
+// Bsdf::evaluate for the Lambertian lobe alone (f: albedo / pi): consistent(), then f |cos| and the
+// cosine density, both zero where wi is below the lobe or the lobe is not valid.
+struct LobeValue {
+  V8 f_cos;
+  F8 pdf;
+};
+[[gnu::always_inline]] inline LobeValue lambertian_value(const Lobe& lobe, const V8& f, const V8& wi) {
+  const F8 z = dot(wi, lobe.n);
+  const M8 above = lobe.valid & consistent(wi, z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z) & (z > 0) & (lobe.wo_z > 0);
+  return {pick(above, mul(f, absolute(z)), V8{}), pick(above, z * splat(kInvPi), splat(0.0f))};
 }
 
 }  // namespace lanes

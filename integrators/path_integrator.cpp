@@ -298,12 +298,14 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     return *params_at_hit;
   };
   const Vec3 ns = shading_normal(desc, material, hit);
-  // The Lambertian lobe alone is the lanes' case: they make its frame themselves, and its Bsdf is
-  // built only where the scalar code below needs it (casters that may aim the bounce, a light
-  // sample the lanes do not take).
+  // The Lambertian lobe alone, and glTF's default dielectric (a rough layer over it), are the lanes'
+  // cases: they make the lobes' frame themselves, and the Bsdf is built only where the scalar code
+  // below needs it (casters that may aim the bounce, a light sample the lanes do not take).
   std::optional<bool> lambertian;
   if (lanes) lambertian = lambertian_everywhere(material, eta);
-  const bool in_lanes = lanes && (lambertian ? *lambertian : Bsdf::lambertian_only(params(), eta));
+  const bool lambertian_lane = lanes && (lambertian ? *lambertian : Bsdf::lambertian_only(params(), eta));
+  const bool coated_lane = lanes && !lambertian_lane && Bsdf::coated_only(params(), eta);
+  const bool in_lanes = lambertian_lane || coated_lane;
   std::optional<Bsdf> built;
   const auto bsdf = [&]() -> const Bsdf& {
     if (!built) built.emplace(params(), ns, hit.ng, wo, eta);
@@ -312,7 +314,15 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   const auto albedo = [&] {  // surface_params' base colour, without the rest where it was not made
     return params_at_hit ? params_at_hit->base_color : base_color(desc, material, hit.uv, hit.uv_width());
   };
-  const int lane = in_lanes ? lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error) : -1;
+  int lane = -1;
+  if (lambertian_lane) {
+    lane = lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error);
+  } else if (coated_lane) {
+    // Bsdf::Bsdf's constants for the layer and the diffuse lobe's pick.
+    const SurfaceParams& p = params();
+    const CoatedSurface coat{p.roughness * p.roughness, eta, std::max(luminance(p.base_color), 0.05f)};
+    lane = lanes->add({ns, hit.ng, wo, Lambertian{p.base_color}.f()}, hit.p, hit.p_error, coat);
+  }
 
   // A vertex in the lanes, where casters may aim bounces, makes its strategy in li_packet's slot for
   // it: the lanes' light sample and bounce are weighed against it after their run.
@@ -321,7 +331,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   if (!in_lanes) {
     choose_bounce(scene, hit, bsdf(), bounce);
   } else if constexpr (kAimsAtCasters) {
-    // choose_bounce's aim, without the Lambertian Bsdf (its lobe reflects only, and is not a delta).
+    // choose_bounce's aim, without the Bsdf (its lobes reflect only, and are not delta lobes).
     aim_bounce(scene, hit.p, Bsdf::reflecting_normal(ns, hit.ng, wo), bounce);
   }
 
@@ -339,25 +349,27 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     shadow.target = &path.light_after(depth + 1);  // through this bounce's scattering
   }
 
-  // A Lambertian lobe's bounce, unless aimed at casters, is drawn in lanes; li_packet then finishes
-  // it with scatter() (and the mixture's density, where casters take a share).
-  if (in_lanes && !(kAimsAtCasters && bounce.share > 0 && u.lobe < bounce.share)) {
-    lanes->request_bounce(lane, u.direction);
+  // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen. A lanes
+  // vertex's bounce, unless aimed at casters, is drawn in lanes; li_packet then finishes it with
+  // scatter() (and the mixture's density, where casters take a share).
+  const bool aimed = kAimsAtCasters && bounce.share > 0 && u.lobe < bounce.share;  // (no share without casters)
+  const float bsdf_u_lobe = kAimsAtCasters && bounce.share > 0
+                                ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f)
+                                : u.lobe;
+  if (in_lanes && !aimed) {
+    lanes->request_bounce(lane, u.direction, bsdf_u_lobe);  // (a Lambertian lane ignores the lobe draw)
     return Step::kInLanes;
   }
-  // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen.
   std::optional<BsdfSample> bs;
   int cone = -1;  // the caster's cone an aimed direction was drawn in
-  if (bounce.share > 0 && u.lobe < bounce.share) {
+  if (aimed) {
     bs.emplace();
     bs->wi = bounce.casters->sample(u.lobe / bounce.share, u.direction, &cone);
     const Bsdf::Value v = bsdf().evaluate(bs->wi);
     bs->f_cos = v.f_cos;
     bs->pdf = v.pdf;
   } else {
-    const float u_lobe =
-        bounce.share > 0 ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f) : u.lobe;
-    bs = bsdf().sample(u_lobe, u.direction);
+    bs = bsdf().sample(bsdf_u_lobe, u.direction);
   }
   if (!bs) return Step::kEnds;
   if (bounce.share > 0 && !bounce.mix(*bs, cone)) return Step::kEnds;
@@ -588,7 +600,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
       step[i] = advance<kAimsAtCasters>(scene, paths[live[i]], at, shadows[i], counters, lanes_ ? &lanes : nullptr);
       if (lanes.size() > before) vertex_lane[before] = i;
     }
-    // The Lambertian vertices' light samples and bounces, in SIMD lanes.
+    // The Lambertian and coated vertices' light samples and bounces, in SIMD lanes.
     lane_vertices(lanes, light_results, bounce_results);
     for (int j = 0; j < lanes.size(); ++j) {
       const int i = vertex_lane[j];
@@ -616,7 +628,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
         bs.pdf = b.pdf;
         bool sampled = b.sampled;
         if (kAimsAtCasters && sampled && bounces->lane[i].share > 0) sampled = bounces->lane[i].mix(bs);
-        // A Lambertian bounce reflects: the material and side matter only to transmission.
+        // A lanes vertex's bounce reflects: the material and side matter only to transmission.
         step[i] = sampled && scatter(paths[live[i]], hits[i], bs, scene.desc().material(hits[i].material), true,
                                        draws[i].roulette, counters, &b.origin)
                       ? Step::kGoesOn

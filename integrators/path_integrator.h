@@ -31,10 +31,11 @@ class PathIntegrator final : public Integrator {
   // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
-  // Whether li_packet does part of the Lambertian vertices' work in SIMD lanes (lane_vertices):
-  // next-event estimation toward untextured triangles and quads, punctual lights and the sky (its
-  // direction drawn by the scalar code), and the bounce. On by default;
-  // either way the images are the same bits, so off serves tests and measurements.
+  // Whether li_packet does part of the work of Lambertian vertices and of glTF's default dielectric
+  // (Bsdf::coated_only) in SIMD lanes (lane_vertices): next-event estimation toward untextured
+  // triangles and quads, punctual lights and the sky (its direction drawn by the scalar code), and
+  // the bounce. On by default; either way the images are the same bits, so off serves tests and
+  // measurements.
   void set_lanes(bool on) { lanes_ = on; }
 
  private:
@@ -51,7 +52,7 @@ class PathIntegrator final : public Integrator {
   // What advance leaves a path to: it ends, it goes on, or it waits for lane_vertices to draw its
   // bounce (li_packet then finishes it with scatter).
   enum class Step { kEnds, kGoesOn, kInLanes };
-  // lanes: where a Lambertian vertex takes a lane of it (the last one added), from which its
+  // lanes: where a Lambertian or coated vertex takes a lane of it (the last one added), from which its
   // next-event estimation (ShadowQuery::queued) and its bounce (Step::kInLanes) may be asked
   // instead of direct_light and Bsdf::sample; null: neither. kAimsAtCasters: casters may take a
   // share of the bounces (caster_share_ > 0 and the scene has some); without them, the code that

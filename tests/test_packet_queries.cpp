@@ -399,15 +399,15 @@ TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
   EXPECT_GT(compared, 10000);
 }
 
-// The lanes' bounces are Bsdf::sample's for a Lambertian lobe and their rays' origins spawn_ray's,
-// bit for bit, with AVX2 and without, the lobe's frame made in lanes from the Bsdf constructor's
-// inputs: shading normals leaning off the face (bent toward a grazing wo, mirrored, or facing
-// into the surface), seen from either side and along the face's plane, with draws on the square's
-// edges and at its centre.
+// The lanes' bounces are Bsdf::sample's for a Lambertian lobe and for the coated mixture (every
+// other round's batches mix both), and their rays' origins spawn_ray's, bit for bit, with AVX2 and
+// without, the lobe's frame made in lanes from the Bsdf constructor's inputs: shading normals
+// leaning off the face (bent toward a grazing wo, mirrored, or facing into the surface), seen from
+// either side and along the face's plane, with draws on the square's edges and at its centre.
 TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
   Pcg32 rng(45, 46);
   const float edges[] = {0.0f, 0.5f, 0x1.fffffep-1f};
-  int compared = 0, refused = 0, bent = 0, in_plane = 0;
+  int compared = 0, refused = 0, bent = 0, in_plane = 0, coated_lanes = 0;
   for (int round = 0; round < 3000; ++round) {
     const int n = 1 + round % LaneVertexBatch::kLanes;
     LaneVertexBatch batch;
@@ -415,6 +415,7 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
     std::optional<Bsdf> bsdfs[LaneVertexBatch::kLanes];
     Vec3 wos[LaneVertexBatch::kLanes];
     Vec2 draws[LaneVertexBatch::kLanes];
+    float lobe_draws[LaneVertexBatch::kLanes];
     bool asked[LaneVertexBatch::kLanes];
     for (int k = 0; k < n; ++k) {
       SurfaceHit& hit = hits[k];
@@ -432,13 +433,27 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       SurfaceParams params;
       params.base_color = Rgb(rng.next_float(), rng.next_float(), rng.next_float());
       params.specular = 0;
-      bsdfs[k].emplace(params, hit.ns, hit.ng, wo, 1.0f);
+      // Some lanes coated (Bsdf::coated_only): relative indices above 1, and below (inside glass).
+      const bool coated = round % 2 == 1 && rng.next_float() < 0.7f;
+      float eta = 1.0f;
+      if (coated) {
+        params.specular = 1;
+        params.roughness = 0.04f + 0.96f * rng.next_float();
+        eta = rng.next_float() < 0.2f ? 0.6f + 0.35f * rng.next_float() : 1.05f + rng.next_float();
+      }
+      bsdfs[k].emplace(params, hit.ns, hit.ng, wo, eta);
       draws[k] = rng.next_float() < 0.2f ? Vec2{edges[rng.next_u32() % 3], edges[rng.next_u32() % 3]}
                                          : Vec2{rng.next_float(), rng.next_float()};
+      lobe_draws[k] = rng.next_float();
       // A lane that asks for no bounce beside those that do (it would ask for its light sample alone).
-      const int lane = batch.add({hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()}, hit.p, hit.p_error);
+      const LambertianSurface surface{hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()};
+      const CoatedSurface coat{params.roughness * params.roughness, eta,
+                               std::max(luminance(params.base_color), 0.05f)};
+      ASSERT_EQ(Bsdf::coated_only(params, eta), coated);
+      const int lane = coated ? batch.add(surface, hit.p, hit.p_error, coat) : batch.add(surface, hit.p, hit.p_error);
       asked[k] = rng.next_float() < 0.8f;
-      if (asked[k]) batch.request_bounce(lane, draws[k]);
+      if (asked[k]) batch.request_bounce(lane, draws[k], lobe_draws[k]);
+      coated_lanes += coated && asked[k];
     }
     LaneBounce out[LaneVertexBatch::kLanes], sse[LaneVertexBatch::kLanes];
     LaneLightResult unasked[LaneVertexBatch::kLanes];
@@ -448,7 +463,7 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       if (!asked[k]) continue;  // its result is not to be read
       const LaneBounce& got = out[k];
       const LaneBounce& other = sse[k];
-      const std::optional<BsdfSample> expected = bsdfs[k]->sample(0.5f, draws[k]);
+      const std::optional<BsdfSample> expected = bsdfs[k]->sample(lobe_draws[k], draws[k]);
       ASSERT_EQ(got.sampled, expected.has_value()) << "round " << round << " lane " << k;
       ASSERT_EQ(other.sampled, got.sampled);
       const Vec3& n_used = bsdfs[k]->normal();
@@ -473,6 +488,7 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
     }
   }
   EXPECT_GT(compared, 20000);
+  EXPECT_GT(coated_lanes, 20000);
   EXPECT_GT(refused, 0);  // draws the checks turn down were among them
   EXPECT_GT(bent, 100);
   EXPECT_GT(in_plane, 100);
@@ -687,6 +703,42 @@ TEST(Lanes, GiveTheScalarPathsBitsWhereCastersAimTheBounce) {
   const Scene sky(std::move(open), &material_alpha);
   ASSERT_FALSE(sky.casters().empty());
   EXPECT_GT(expect_lanes_match_scalar_paths(sky, 200, 0.25f), 2000u);
+}
+
+// Turns the scene's opaque dielectrics into glTF's default one, a rough specular layer over the
+// Lambertian lobe (Bsdf::CoatedDiffuse), of several roughnesses, but for two kinds of coat the lanes
+// leave to the scalar code: a smooth one (a delta layer) and one tinted by KHR_materials_specular.
+void coat_the_walls(SceneDesc& desc) {
+  for (size_t k = 0; k < desc.materials.size(); ++k) {
+    MaterialDesc& m = desc.materials[k];
+    if (m.is_emissive() || m.transmission > 0 || m.metallic > 0) continue;
+    m.ior = 1.5f;
+    m.roughness = k % 4 == 3 ? 0.01f : 0.2f + 0.25f * float(k % 3);
+    if (k % 5 == 4) m.specular_color = Rgb(1.0f, 0.6f, 0.3f);
+  }
+}
+
+// Coated vertices take their light samples and bounces in the lanes: the scalar code's bits, for
+// points on triangle lights (near and far), toward the sky and punctual lights (through a window
+// too), where casters aim the bounce, and inside glass, where the layer's relative index is below 1
+// (total internal reflection at grazing angles).
+TEST(Lanes, GiveTheScalarPathsBitsAtCoatedSurfaces) {
+  SceneDesc lit = lanes_test_scene();
+  coat_the_walls(lit);
+  test::add_sphere(lit, Vec3(0.9f, 0.8f, 0.2f), 0.6f, test::add_glass(lit, 1.5f));
+  const int inside = test::add_material(lit, Rgb(0.8f, 0.4f, 0.2f));
+  lit.materials[size_t(inside)].ior = 1.2f;
+  lit.materials[size_t(inside)].roughness = 0.4f;
+  test::add_sphere(lit, Vec3(0.9f, 0.8f, 0.2f), 0.3f, inside);
+  const Scene lit_scene(std::move(lit), &material_alpha);
+  EXPECT_GT(expect_lanes_match_scalar_paths(lit_scene), 2000u);
+  EXPECT_GT(expect_lanes_match_scalar_paths(lit_scene, 200, 0.25f), 2000u);
+  for (const bool pane : {false, true}) {
+    SceneDesc open = open_to_the_sky(pane);
+    coat_the_walls(open);
+    const Scene sky(std::move(open), &material_alpha);
+    EXPECT_GT(expect_lanes_match_scalar_paths(sky), 2000u) << "pane " << pane;
+  }
 }
 
 // The same under a light tree larger than the caches, where the lanes choose their lights together

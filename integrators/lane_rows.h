@@ -23,10 +23,8 @@ class LaneRows {
   // zeros: lanes past size() then hold finite values (zeros, or an earlier round's), whose results
   // are never read.
   int next_lane() {
-    if (size_ % kBlock == 0 && size_ >= written_) {
-      for (float* row : rows_) std::fill_n(row + size_, kBlock, 0.0f);
-      written_ = size_ + kBlock;
-    }
+    if (size_ % kBlock == 0 && size_ >= written_) [[unlikely]]
+      fill_block();
     return size_++;
   }
   void set(int r, int lane, float v) { rows_[r][lane] = v; }
@@ -38,6 +36,11 @@ class LaneRows {
 
  private:
   static constexpr int kBlock = 8;  // lanes a kernel reads at once (lanes::kLanes)
+  // Out of line, so that next_lane stays small enough to inline wherever a lane is added.
+  [[gnu::noinline]] void fill_block() {
+    for (float* row : rows_) std::fill_n(row + size_, kBlock, 0.0f);
+    written_ = size_ + kBlock;
+  }
   static_assert(kLanes % kBlock == 0);
   alignas(32) float rows_[kRows][kLanes];
   int size_ = 0;

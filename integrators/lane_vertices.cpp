@@ -50,6 +50,8 @@ int LaneVertexBatch::add(const LambertianSurface& surface, const Vec3& p, const 
   set(kCoatAlpha, lane, coated.alpha);  // at least GgxDistribution::kSmoothAlpha (Bsdf::coated_only): never 0
   set(kCoatEta, lane, coated.eta);
   set(kDiffuseAlbedo, lane, coated.diffuse_albedo);
+  set(kMetallic, lane, coated.metallic);
+  set(kBaseColor, lane, coated.base_color);
   return lane;
 }
 

@@ -21,7 +21,7 @@ struct LaneVertexFields : LambertianSurfaceFields {
     kBeta = kSurfaceRows,  // three rows, one each below
     kLightUx = kBeta + 3, kLightUy, kPmf, kWantsLight, kBounceUx, kBounceUy, kWantsBounce,
     kTowardW, kIncident = kTowardW + 3, kTowardDistance = kIncident + 3, kTowardPdf, kTowardDelta, kWeighLater,
-    kCoatAlpha, kCoatEta, kDiffuseAlbedo, kBounceULobe, kRows
+    kCoatAlpha, kCoatEta, kDiffuseAlbedo, kBounceULobe, kMetallic, kBaseColor, kRows = kBaseColor + 3
   };
   // kWantsLight: a point on a triangle light (kLightUx, kLightUy, kPmf and the record), or a
   // direction toward a punctual light or the sky (kTowardW to kTowardDelta); 0: none.

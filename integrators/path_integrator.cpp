@@ -320,7 +320,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   } else if (coated_lane) {
     // Bsdf::Bsdf's constants for the layer and the diffuse lobe's pick.
     const SurfaceParams& p = params();
-    const CoatedSurface coat{p.roughness * p.roughness, eta, std::max(luminance(p.base_color), 0.05f)};
+    const CoatedSurface coat{p.roughness * p.roughness, eta, std::clamp(p.metallic, 0.0f, 1.0f), p.base_color,
+                             std::max(luminance(p.base_color), 0.05f)};
     lane = lanes->add({ns, hit.ng, wo, Lambertian{p.base_color}.f()}, hit.p, hit.p_error, coat);
   }
 

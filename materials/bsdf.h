@@ -54,13 +54,14 @@ class Bsdf {
     const float m = std::clamp(params.metallic, 0.0f, 1.0f), t = std::clamp(params.transmission, 0.0f, 1.0f);
     return m == 0 && t == 0 && (eta == 1.0f || !(params.specular > 0));
   }
-  // Whether the mixture at a point with these parameters and eta is glTF's default opaque
-  // dielectric alone: a rough specular layer (its exact Fresnel curve, no KHR_materials_specular
-  // remapping, not a delta lobe) over the Lambertian lobe; no metal, no transmission. SIMD kernels
-  // evaluate and sample it themselves (integrators/lane_coated_lobe.h).
+  // Whether the mixture at a point with these parameters and eta is glTF's opaque metallic-roughness
+  // model with rough lobes: GGX metal (weight metallic) and glTF's default dielectric, a GGX layer
+  // (its exact Fresnel curve, no KHR_materials_specular remapping) over the Lambertian lobe; no
+  // transmission, no delta lobe. SIMD kernels evaluate and sample it themselves
+  // (integrators/lane_coated_lobe.h).
   static bool coated_only(const SurfaceParams& params, float eta) {
-    const float m = std::clamp(params.metallic, 0.0f, 1.0f), t = std::clamp(params.transmission, 0.0f, 1.0f);
-    return m == 0 && t == 0 && eta != 1.0f && params.specular == 1.0f && params.specular_color == Rgb(1.0f) &&
+    const float t = std::clamp(params.transmission, 0.0f, 1.0f);
+    return t == 0 && eta != 1.0f && params.specular == 1.0f && params.specular_color == Rgb(1.0f) &&
            params.roughness * params.roughness >= GgxDistribution::kSmoothAlpha;
   }
   // True when no lobe transmits: every direction it scatters to stays on wo's side.

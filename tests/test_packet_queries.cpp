@@ -440,6 +440,8 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
         params.specular = 1;
         params.roughness = 0.04f + 0.96f * rng.next_float();
         eta = rng.next_float() < 0.2f ? 0.6f + 0.35f * rng.next_float() : 1.05f + rng.next_float();
+        const float metal = rng.next_float();  // half dielectric, a quarter metal, a quarter mixed
+        params.metallic = metal < 0.5f ? 0.0f : metal < 0.75f ? 1.0f : rng.next_float();
       }
       bsdfs[k].emplace(params, hit.ns, hit.ng, wo, eta);
       draws[k] = rng.next_float() < 0.2f ? Vec2{edges[rng.next_u32() % 3], edges[rng.next_u32() % 3]}
@@ -447,7 +449,7 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       lobe_draws[k] = rng.next_float();
       // A lane that asks for no bounce beside those that do (it would ask for its light sample alone).
       const LambertianSurface surface{hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()};
-      const CoatedSurface coat{params.roughness * params.roughness, eta,
+      const CoatedSurface coat{params.roughness * params.roughness, eta, params.metallic, params.base_color,
                                std::max(luminance(params.base_color), 0.05f)};
       ASSERT_EQ(Bsdf::coated_only(params, eta), coated);
       const int lane = coated ? batch.add(surface, hit.p, hit.p_error, coat) : batch.add(surface, hit.p, hit.p_error);
@@ -705,15 +707,17 @@ TEST(Lanes, GiveTheScalarPathsBitsWhereCastersAimTheBounce) {
   EXPECT_GT(expect_lanes_match_scalar_paths(sky, 200, 0.25f), 2000u);
 }
 
-// Turns the scene's opaque dielectrics into glTF's default one, a rough specular layer over the
-// Lambertian lobe (Bsdf::CoatedDiffuse), of several roughnesses, but for two kinds of coat the lanes
-// leave to the scalar code: a smooth one (a delta layer) and one tinted by KHR_materials_specular.
+// Turns the scene's opaque dielectrics into glTF's opaque metallic-roughness model with rough lobes
+// (Bsdf::coated_only): dielectric (a rough specular layer over the Lambertian lobe), metal, and the
+// two mixed, of several roughnesses; but for two kinds the lanes leave to the scalar code: a smooth
+// one (delta lobes) and one tinted by KHR_materials_specular.
 void coat_the_walls(SceneDesc& desc) {
   for (size_t k = 0; k < desc.materials.size(); ++k) {
     MaterialDesc& m = desc.materials[k];
     if (m.is_emissive() || m.transmission > 0 || m.metallic > 0) continue;
     m.ior = 1.5f;
     m.roughness = k % 4 == 3 ? 0.01f : 0.2f + 0.25f * float(k % 3);
+    m.metallic = k % 3 == 1 ? 0.3f : k % 6 == 2 ? 1.0f : 0.0f;
     if (k % 5 == 4) m.specular_color = Rgb(1.0f, 0.6f, 0.3f);
   }
 }

@@ -12,8 +12,8 @@
 
 namespace prism {
 
-// What Bsdf::sample gives for the vertex's Lambertian or coated lobes (sampled false where it gives nothing),
-// and the origin spawn_ray would give the ray leaving the hit along wi.
+// What Bsdf::sample gives for the vertex's Lambertian or coated lobes (sampled false where it gives
+// nothing), and the origin spawn_ray would give the ray leaving the hit along wi.
 struct LaneBounce {
   Vec3 wi, origin;
   Rgb f_cos;

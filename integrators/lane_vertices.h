@@ -29,15 +29,15 @@ struct LaneVertexFields : LambertianSurfaceFields {
 };
 
 // Up to kLanes vertices, each asking for its light sample, its bounce, or both: Lambertian ones
-// (Bsdf::lambertian_only) and glTF's default dielectric (Bsdf::coated_only). Light samples outside
-// every volume only: no medium absorbs.
+// (Bsdf::lambertian_only) and glTF's opaque metallic-roughness mixture (Bsdf::coated_only),
+// "coated" here. Light samples outside every volume only: no medium absorbs.
 class LaneVertexBatch : public LaneVertexFields, public LambertianLaneRows<LaneVertexFields::kRows> {
  public:
   // A vertex: its surface, its hit's point and the point's error bound. Returns its lane, which asks
   // for nothing yet. At most kLanes.
   int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error);
-  // A vertex whose Bsdf is the coated mixture (Bsdf::coated_only): `coated`'s layer over the
-  // Lambertian lobe of `surface`.
+  // A vertex whose Bsdf is the coated mixture (Bsdf::coated_only): `coated`'s metal and layer, and
+  // the Lambertian lobe of `surface`.
   int add(const LambertianSurface& surface, const Vec3& p, const Vec3& p_error, const CoatedSurface& coated);
   // The lane's light sample: the triangle its hit is on, the path's throughput, and the light point
   // drawn for it (Emitters::triangle_draw), whose record must outlive the kernel's run.

@@ -298,9 +298,10 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
     return *params_at_hit;
   };
   const Vec3 ns = shading_normal(desc, material, hit);
-  // The Lambertian lobe alone, and glTF's default dielectric (a rough layer over it), are the lanes'
-  // cases: they make the lobes' frame themselves, and the Bsdf is built only where the scalar code
-  // below needs it (casters that may aim the bounce, a light sample the lanes do not take).
+  // The Lambertian lobe alone, and glTF's opaque metallic-roughness mixture with rough lobes
+  // (Bsdf::coated_only), are the lanes' cases: they make the lobes' frame themselves, and the Bsdf is
+  // built only where the scalar code below needs it (casters that may aim the bounce, a light
+  // sample the lanes do not take).
   std::optional<bool> lambertian;
   if (lanes) lambertian = lambertian_everywhere(material, eta);
   const bool lambertian_lane = lanes && (lambertian ? *lambertian : Bsdf::lambertian_only(params(), eta));
@@ -318,7 +319,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   if (lambertian_lane) {
     lane = lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error);
   } else if (coated_lane) {
-    // Bsdf::Bsdf's constants for the layer and the diffuse lobe's pick.
+    // Bsdf::Bsdf's constants for the lobes and the diffuse lobe's pick.
     const SurfaceParams& p = params();
     const CoatedSurface coat{p.roughness * p.roughness, eta, std::clamp(p.metallic, 0.0f, 1.0f), p.base_color,
                              std::max(luminance(p.base_color), 0.05f)};
@@ -353,7 +354,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   // The lobe draw first chooses the strategy, then is rescaled to serve the one chosen. A lanes
   // vertex's bounce, unless aimed at casters, is drawn in lanes; li_packet then finishes it with
   // scatter() (and the mixture's density, where casters take a share).
-  const bool aimed = kAimsAtCasters && bounce.share > 0 && u.lobe < bounce.share;  // (no share without casters)
+  const bool aimed = kAimsAtCasters && bounce.share > 0 && u.lobe < bounce.share;  // (no share otherwise)
   const float bsdf_u_lobe = kAimsAtCasters && bounce.share > 0
                                 ? std::min((u.lobe - bounce.share) / (1 - bounce.share), 0x1.fffffep-1f)
                                 : u.lobe;

@@ -31,11 +31,11 @@ class PathIntegrator final : public Integrator {
   // rays go to Embree as packets. Each lane's result is bit for bit what li gives it.
   void li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
                  AovSample* const* aovs, RadianceSample* out) const override;
-  // Whether li_packet does part of the work of Lambertian vertices and of glTF's default dielectric
-  // (Bsdf::coated_only) in SIMD lanes (lane_vertices): next-event estimation toward untextured
-  // triangles and quads, punctual lights and the sky (its direction drawn by the scalar code), and
-  // the bounce. On by default; either way the images are the same bits, so off serves tests and
-  // measurements.
+  // Whether li_packet does part of the work of Lambertian vertices and of glTF's opaque
+  // metallic-roughness mixture (Bsdf::coated_only) in SIMD lanes (lane_vertices): next-event
+  // estimation toward untextured triangles and quads, punctual lights and the sky (its direction
+  // drawn by the scalar code), and the bounce. On by default; either way the images are the same
+  // bits, so off serves tests and measurements.
   void set_lanes(bool on) { lanes_ = on; }
 
  private:

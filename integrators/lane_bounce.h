@@ -55,7 +55,7 @@ template <bool kCoated, class B>
                any_nonzero(f_cos);
   if (kCoated && any(coats.coated & wants)) {
     const CoatedSample c =
-        coated_sample(lobe, coats.wo, albedo_f, coats.mix, row(batch, B::kBounceULobe, f), dx, dy, V8{dx, dy, z});
+        coated_sample(lobe, coats.o, albedo_f, coats.mix, row(batch, B::kBounceULobe, f), dx, dy, V8{dx, dy, z});
     wi = pick(coats.coated, c.wi, wi);
     f_cos = pick(coats.coated, c.f_cos, f_cos);
     pdf = pick(coats.coated, c.pdf, pdf);

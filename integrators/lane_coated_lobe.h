@@ -65,7 +65,7 @@ struct CoatedMixture {
   mix.diffuse_weight = mix.coat_weight * maximum(splat(0.0f), splat(1.0f) - r);
   const F8 metal = pick(metallic > 0, metallic * maximum(luminance(fresnel_schlick(f0, lobe.wo_z)), splat(0.05f)),
                         splat(0.0f));
-  const F8 coat = mix.coat_weight * (splat(0.2126f) * r + splat(0.7152f) * r + splat(0.0722f) * r);
+  const F8 coat = mix.coat_weight * luminance(V8{r, r, r});
   const F8 diffuse = mix.diffuse_weight * diffuse_albedo;
   const F8 total = metal + coat + diffuse;  // ((metal + 0) + coat) + diffuse: the dielectric's pick is 0
   mix.valid = lobe.valid & (total > 0);
@@ -136,10 +136,14 @@ struct GlossyValues {
   return {mul(sum, absolute(i.z)), pdf};
 }
 
-// Bsdf::evaluate toward world wi. wo: world.
-[[gnu::always_inline]] inline LobeValue coated_value(const Lobe& lobe, const V8& wo, const V8& f, const V8& wi,
+// wo in the lobes' frame (Bsdf's wo_), from world wo.
+[[gnu::always_inline]] inline V8 local_wo(const Lobe& lobe, const V8& wo) {
+  return {dot(wo, lobe.s), dot(wo, lobe.t), lobe.wo_z};
+}
+
+// Bsdf::evaluate toward world wi. o: local_wo.
+[[gnu::always_inline]] inline LobeValue coated_value(const Lobe& lobe, const V8& o, const V8& f, const V8& wi,
                                                     const CoatedMixture& mix) {
-  const V8 o{dot(wo, lobe.s), dot(wo, lobe.t), lobe.wo_z};
   const V8 i{dot(wi, lobe.s), dot(wi, lobe.t), dot(wi, lobe.n)};
   const M8 valid = mix.valid & consistent(wi, i.z, lobe.ng, lobe.wo_dot_ng, lobe.wo_z);
   const LobeValue v = mixture_value(o, i, f, mix);
@@ -175,10 +179,9 @@ struct CoatedSample {
   F8 pdf;
   M8 sampled;
 };
-[[gnu::always_inline]] inline CoatedSample coated_sample(const Lobe& lobe, const V8& wo, const V8& f,
+[[gnu::always_inline]] inline CoatedSample coated_sample(const Lobe& lobe, const V8& o, const V8& f,
                                                          const CoatedMixture& mix, F8 u_lobe, F8 p1, F8 p2,
                                                          const V8& diffuse) {
-  const V8 o{dot(wo, lobe.s), dot(wo, lobe.t), lobe.wo_z};
   const M8 has_metal = mix.metal_pick > 0, has_coat = mix.coat_pick > 0, has_diffuse = mix.diffuse_pick > 0;
   // Each lobe with a pick extends the CDF; u_lobe below it picks the lobe, and past the end the last one.
   const F8 cdf_coat = mix.metal_pick + mix.coat_pick;
@@ -196,7 +199,7 @@ struct CoatedSample {
   const V8 wi = add(add(mul(lobe.s, local.x), mul(lobe.t, local.y)), mul(lobe.n, local.z));
   CoatedSample out;
   out.wi = wi;
-  const LobeValue mixed = coated_value(lobe, wo, f, wi, mix);
+  const LobeValue mixed = coated_value(lobe, o, f, wi, mix);
   // One lobe alone: its own value at the drawn direction, times its weight and |cos|, and its pick.
   const M8 alone = (has_metal & ~has_coat & ~has_diffuse) | (~has_metal & has_coat & ~has_diffuse) |
                    (~has_metal & ~has_coat & has_diffuse);
@@ -213,11 +216,12 @@ struct CoatedSample {
   return out;
 }
 
-// A block's coated lanes (kCoatAlpha not 0): their mixtures, and wo, made where there are any.
+// A block's coated lanes (kCoatAlpha not 0): their mixtures, and wo in their frame (o), made where
+// there are any.
 struct Coats {
   M8 coated;
   CoatedMixture mix;
-  V8 wo;
+  V8 o;
 };
 template <class B>
 [[gnu::always_inline]] inline Coats coats_of(const B& batch, int first, const Lobe& lobe) {
@@ -227,7 +231,7 @@ template <class B>
   if (!any(c.coated)) return c;
   c.mix = coated_mixture(lobe, alpha, row(batch, B::kCoatEta, first), row(batch, B::kMetallic, first),
                          rows(batch, B::kBaseColor, first), row(batch, B::kDiffuseAlbedo, first));
-  c.wo = rows(batch, B::kWo, first);
+  c.o = local_wo(lobe, rows(batch, B::kWo, first));
   return c;
 }
 
@@ -237,7 +241,7 @@ template <bool kCoated>
 [[gnu::always_inline]] inline LobeValue surface_value(const Lobe& lobe, const Coats& coats, const V8& f, const V8& wi) {
   const LobeValue lambertian = lambertian_value(lobe, f, wi);
   if (!kCoated || !any(coats.coated)) return lambertian;
-  const LobeValue c = coated_value(lobe, coats.wo, f, wi, coats.mix);
+  const LobeValue c = coated_value(lobe, coats.o, f, wi, coats.mix);
   return {pick(coats.coated, c.f_cos, lambertian.f_cos), pick(coats.coated, c.pdf, lambertian.pdf)};
 }
 

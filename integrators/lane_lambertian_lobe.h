@@ -96,7 +96,6 @@ template <class Batch>
   return lambertian_lobe(rows(batch, F::kNs, first), rows(batch, F::kNg, first), rows(batch, F::kWo, first));
 }
 
-
 // Bsdf::evaluate for the Lambertian lobe alone (f: albedo / pi): consistent(), then f |cos| and the
 // cosine density, both zero where wi is below the lobe or the lobe is not valid.
 struct LobeValue {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/arctangent.h"
 #include "core/constants.h"
 #include "core/memory_limit.h"
 #include "core/sampling.h"
@@ -45,16 +46,19 @@ Vec2 EnvironmentLight::direction_to_uv(const Vec3& w) const {
   // Undo the rotation about +Y, then longitude from -Z toward +X, latitude from +Y.
   const float x = cos_rot_ * w.x - sin_rot_ * w.z;
   const float z = sin_rot_ * w.x + cos_rot_ * w.z;
-  const float phi = std::atan2(x, -z);  // 0 toward -Z
-  const float theta = std::acos(std::clamp(w.y, -1.0f, 1.0f));
+  const float phi = atan2_fast(x, -z);  // 0 toward -Z
+  // The polar angle as an arctangent of the height over the distance from the axis: as exact near
+  // the poles as at the horizon (acos(w.y) loses bits there), and it needs no unit w.
+  const float theta = atan2_fast(std::sqrt(w.x * w.x + w.z * w.z), w.y);
   return {0.5f + phi * kInvTwoPi, theta * kInvPi};
 }
 
 Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
-  const float phi = (uv.x - 0.5f) * kTwoPi, theta = uv.y * kPi;
-  const float s = std::sin(theta);
-  const float x = s * std::sin(phi), z = -s * std::cos(phi);
-  return {cos_rot_ * x + sin_rot_ * z, std::cos(theta), -sin_rot_ * x + cos_rot_ * z};
+  const float phi = (uv.x - 0.5f) * kTwoPi;  // in [-pi, pi]
+  const SinCos polar = sin_cos_half_turn(uv.y * kPi), azimuth = sin_cos_half_turn(std::abs(phi));
+  const float s = polar.sin;
+  const float x = s * std::copysign(azimuth.sin, phi), z = -s * azimuth.cos;
+  return {cos_rot_ * x + sin_rot_ * z, polar.cos, -sin_rot_ * x + cos_rot_ * z};
 }
 
 Rgb EnvironmentLight::radiance(const Vec3& w) const {
@@ -117,7 +121,7 @@ Rgb EnvironmentLight::map_radiance(Vec2 uv) const {
 }
 
 float EnvironmentLight::map_pdf(Vec2 uv) const {
-  const float sin_t = std::sin(uv.y * kPi);
+  const float sin_t = sin_cos_half_turn(uv.y * kPi).sin;
   return sin_t > 0 ? distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_t) : 0.0f;
 }
 

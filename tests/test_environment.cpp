@@ -12,6 +12,7 @@
 #include "core/environment_light.h"
 #include "core/pcg32.h"
 #include "core/sampler.h"
+#include "core/sampling.h"
 #include "core/scene.h"
 #include "integrators/path_integrator.h"
 #include "integrators/whitted_integrator.h"
@@ -94,6 +95,23 @@ TEST(Environment, EquirectangularOrientation) {
   }
   // Counter-clockwise seen from above: the map's centre, toward -Z before, now faces -X.
   EXPECT_NEAR(r.direction_to_uv(Vec3(-1, 0, 0)).x, 0.5f, 1e-5f);
+  // The map coordinates of any direction (poles and seams included) are its angles in double to
+  // within a few float ulps of 1, and the map's direction at uv is the point on the sphere.
+  Pcg32 rng(5, 6);
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    if (i % 4 == 1) w = normalize(Vec3(w.x * 1e-4f, w.y, w.z * 1e-4f));  // near a pole
+    if (i % 4 == 2) w = normalize(Vec3(w.x * 1e-4f, w.y, -std::abs(w.z)));  // near the seam
+    const Vec2 uv = env.direction_to_uv(w);
+    const double u = 0.5 + std::atan2(double(w.x), -double(w.z)) / (2 * M_PI);
+    // (acos of w.y would be the polar angle of a unit w, but w.y in float is 1 - 6e-8 k near +Y.)
+    const double v = std::atan2(std::hypot(double(w.x), double(w.z)), double(w.y)) / M_PI;
+    ASSERT_NEAR(uv.x, u, 4e-7) << w.x << " " << w.y << " " << w.z;
+    ASSERT_NEAR(uv.y, v, 4e-7) << w.x << " " << w.y << " " << w.z;
+    const Vec3 back = env.uv_to_direction(uv);
+    ASSERT_NEAR(length(back), 1.0f, 1e-6f);
+    ASSERT_LT(length(back - w), 2e-6f) << w.x << " " << w.y << " " << w.z;
+  }
 }
 
 TEST(Environment, MapSamplingMatchesItsPdf) {

@@ -135,12 +135,39 @@ inline float owen_sobol_1d(uint32_t reversed_index, const SobolSeeds& s) {
   return fraction_to_float(owen_scramble(r, s.value0));
 }
 
-inline Vec2 owen_sobol_2d(uint32_t reversed_index, const SobolSeeds& s) {
-  const uint32_t r = laine_karras_permutation(reversed_index, s.index);
+// The 2D point of the shuffled index whose reversal is r, its values scrambled by s.
+inline Vec2 owen_sobol_2d_shuffled(uint32_t r, const SobolSeeds& s) {
   const uint32_t x = laine_karras_permutation(reverse_bits(r), s.value0);
   const uint32_t y = laine_karras_permutation(sobol_dim1_reversed(r), s.value1);
   const uint64_t xy = reverse_bits64((uint64_t(y) << 32) | x);  // both reversed at once
   return {fraction_to_float(uint32_t(xy >> 32)), fraction_to_float(uint32_t(xy))};
+}
+
+inline Vec2 owen_sobol_2d(uint32_t reversed_index, const SobolSeeds& s) {
+  return owen_sobol_2d_shuffled(laine_karras_permutation(reversed_index, s.index), s);
+}
+
+// Two 2D draws made from one shuffled index i, the first from i and the second from
+// j = i ^ (i >> 4) ^ (i >> 6) ^ (i >> 7), are one 4D point set rather than two independent ones:
+// j is a linear map of i by an upper unitriangular matrix, so the first 2^m indices (an aligned
+// block of i) map onto an aligned block of j, and each draw alone stays a (0,m,2)-net, while the
+// four coordinates together form a (3,m,4)-net for every m <= 10 (every dyadic box of volume
+// 2^(3-m) holds 8 of the 2^m points; of the sums of two or three shifts by 1 to 8, this one has
+// the smallest t over m = 3..10. Sobol's dimensions 2 and 3 as the second pair give t = 2 at
+// m = 4 and 6, but only t = 1 in their own 2D projection).
+// A path's bounce and the light sample at the vertex it reaches are drawn so (SobolSampler).
+// On the reversed index r = reverse(i), a right shift of i is a left shift of r.
+template <class U32>
+[[gnu::always_inline]] constexpr void joint_second_index_in_place(U32& r) {
+  r ^= (r << 4) ^ (r << 6) ^ (r << 7);
+}
+
+// The second draw of such a pair: the index shuffled by the first draw's seed (partner_index),
+// mapped as above, its values scrambled by its own seeds s (s.index is not used).
+inline Vec2 owen_sobol_2d_joint(uint32_t reversed_index, uint32_t partner_index, const SobolSeeds& s) {
+  uint32_t r = laine_karras_permutation(reversed_index, partner_index);
+  joint_second_index_in_place(r);
+  return owen_sobol_2d_shuffled(r, s);
 }
 
 }  // namespace prism

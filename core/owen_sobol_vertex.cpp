@@ -18,17 +18,23 @@ typedef float F32x8 __attribute__((vector_size(32)));
 // Lanes 0-4 hold the five draws' first coordinates, lanes 5 and 6 the second coordinates of the
 // two 2D draws (dimensions 1 and 3), lane 7 is idle. A 2D draw's second coordinate scrambles
 // Sobol's dimension 1 of the same shuffled index, computed in the lanes from the first
-// coordinate's (reversed_sobol_dim1_in_place), so no lane leaves the vector until the end.
+// coordinate's (reversed_sobol_dim1_in_place), so no lane leaves the vector until the end. The
+// light point's lanes (1 and 5) shuffle by the partner's index seed and map the index as
+// owen_sobol_2d_joint does.
 __attribute__((target("avx2"))) void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& s,
-                                                     VertexSamples& v) {
+                                                     uint32_t partner_index, VertexSamples& v) {
   U32x8 index, value0, value1;  // eight seeds from each array (unaligned loads)
   std::memcpy(&index, s.index, sizeof index);
   std::memcpy(&value0, s.value0, sizeof value0);
   std::memcpy(&value1, s.value1, sizeof value1);
-  const U32x8 index_seeds = __builtin_shufflevector(index, index, 0, 1, 2, 3, 4, 1, 3, 7);
+  const U32x8 partner = U32x8{} + partner_index;
+  const U32x8 index_seeds = __builtin_shufflevector(index, partner, 0, 8, 2, 3, 4, 8, 3, 7);
   const U32x8 value_seeds = __builtin_shufflevector(value0, value1, 0, 1, 2, 3, 4, 9, 11, 7);
   U32x8 r = U32x8{} + reversed_index;
   laine_karras_permute_in_place(r, index_seeds);
+  U32x8 joint = r;
+  joint_second_index_in_place(joint);
+  r = __builtin_shufflevector(r, joint, 0, 9, 2, 3, 4, 13, 6, 7);
   U32x8 w = r;
   reverse_bits_in_place(w);  // the shuffled indices i
   U32x8 dim1 = w;

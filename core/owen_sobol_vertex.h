@@ -21,8 +21,10 @@ struct SobolSeedArrays {
 };
 
 // Draws 1D, 2D, 1D, 2D, 1D, the d-th with the seeds of dimension d (0 <= d < 5), into v's fields in
-// their order: the very values owen_sobol_1d and owen_sobol_2d give, the seven coordinates
-// scrambled together in the lanes of one AVX2 vector. Call only where owen_sobol_vertex_available().
-void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& seeds, VertexSamples& v);
+// their order: the very values owen_sobol_1d and owen_sobol_2d give, except that the light point
+// (d = 1) is owen_sobol_2d_joint's with partner_index, the seven coordinates scrambled together in
+// the lanes of one AVX2 vector. Call only where owen_sobol_vertex_available().
+void owen_sobol_vertex(uint32_t reversed_index, const SobolSeedArrays& seeds, uint32_t partner_index,
+                       VertexSamples& v);
 
 }  // namespace prism

@@ -113,6 +113,63 @@ TEST(Sobol, EveryDrawOfAPixelIsStratified) {
   }
 }
 
+// Whether the first n points put exactly n / 2^(m - t) in every dyadic box of volume 2^(t - m)
+// (a (t,m,s)-net: every split of m - t halvings among the s axes), for points in [0, 1)^s.
+template <size_t S>
+bool is_net(const std::vector<std::array<float, S>>& points, int m, int t) {
+  const size_t n = size_t(1) << m, boxes = size_t(1) << (m - t);
+  std::array<int, S> split{};
+  while (true) {
+    int used = 0;
+    for (size_t a = 0; a + 1 < S; ++a) used += split[a];
+    if (used <= m - t) {
+      split[S - 1] = m - t - used;
+      std::vector<size_t> count(boxes, 0);
+      for (size_t i = 0; i < n; ++i) {
+        size_t box = 0;
+        for (size_t a = 0; a < S; ++a) box = (box << split[a]) | size_t(points[i][a] * float(1 << split[a]));
+        if (++count[box] > n / boxes) return false;
+      }
+    }
+    size_t a = 0;  // the next split of the first S - 1 axes, odometer order
+    while (a + 1 < S && ++split[a] > m - t) split[a++] = 0;
+    if (a + 1 == S) return true;
+  }
+}
+
+// A vertex's light point and the bounce that reached the vertex (the camera's jitter for the first
+// vertex) are one 4D point set: the first 2^m samples of a pixel form a (3,m,4)-net in them, while
+// each stays a (0,m,2)-net alone. Two draws padded independently are no such net: here the light
+// points of consecutive vertices, which are not drawn together.
+TEST(Sobol, LightPointsMakeOneNetWithTheBounceBefore) {
+  SobolSampler sampler(17);
+  for (int m = 3; m <= 10; ++m) {
+    const uint32_t n = 1u << m;
+    for (int pixel = 0; pixel < 3; ++pixel) {
+      std::vector<std::array<float, 4>> joint[3], apart;
+      std::vector<std::array<float, 2>> light[3];
+      for (uint32_t s = 0; s < n; ++s) {
+        sampler.start_pixel_sample(pixel * 13, 7 - pixel, s);
+        Vec2 before = sampler.next_2d();  // the camera's jitter
+        Vec2 first_light;
+        for (int k = 0; k < 3; ++k) {
+          const VertexSamples v = sampler.next_vertex();
+          joint[k].push_back({before.x, before.y, v.light_point.x, v.light_point.y});
+          light[k].push_back({v.light_point.x, v.light_point.y});
+          if (k == 1) apart.push_back({first_light.x, first_light.y, v.light_point.x, v.light_point.y});
+          first_light = v.light_point;
+          before = v.direction;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(is_net(joint[k], m, 3)) << "m " << m << ", pixel " << pixel << ", vertex " << k;
+        EXPECT_TRUE(is_net(light[k], m, 0)) << "m " << m << ", pixel " << pixel << ", vertex " << k;
+      }
+      if (m >= 6) EXPECT_FALSE(is_net(apart, m, 3)) << "m " << m << ", pixel " << pixel;
+    }
+  }
+}
+
 // A sample's values depend only on (pixel, sample index, dimension, seed), never on what the
 // sampler was asked before: any order of pixels and samples gives the same numbers.
 TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
@@ -139,19 +196,30 @@ TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
 
 // A path vertex's five draws taken at once (eight lanes wide on AVX2 CPUs, for Sobol) are the
 // values the same draws give one at a time, bit for bit, across pixels, sample indices (up to the
-// top bit) and dimensions (past the seed cache's 64).
+// top bit) and dimensions (past the seed cache's 64), after a 1D draw or none. Sobol's light point
+// is the one draw that is not next_2d's (Sobol.LightPointsMakeOneNetWithTheBounceBefore).
 TEST(Samplers, VertexDrawsMatchDrawsOneAtATime) {
   std::printf("owen_sobol_vertex: %s\n", owen_sobol_vertex_available() ? "AVX2 lanes" : "one draw at a time");
   for (const std::string& name : sampler_names()) {
     auto batched = make_sampler(name, 21), single = make_sampler(name, 21);
+    SobolSampler* const sobol = dynamic_cast<SobolSampler*>(single.get());
     Pcg32 rng(8, 9);
     for (int trial = 0; trial < 400; ++trial) {
       const int x = int(rng.next_u32() % 64), y = int(rng.next_u32() % 64);
       const uint64_t index = trial < 200 ? uint64_t(trial) : rng.next_u32();
       batched->start_pixel_sample(x, y, index);
       single->start_pixel_sample(x, y, index);
+      if (trial % 2 == 1) ASSERT_EQ(batched->next_1d(), single->next_1d()) << name << " trial " << trial;
       for (int vertex = 0; vertex < 18; ++vertex) {  // 90 dimensions
         const std::array<float, 7> at_once = coordinates(batched->next_vertex());
+        if (sobol) {
+          VertexSamples v;
+          sobol->draw_vertex_one_at_a_time(v);
+          const std::array<float, 7> one_by_one = coordinates(v);
+          for (int c = 0; c < 7; ++c)
+            ASSERT_EQ(at_once[c], one_by_one[c]) << "trial " << trial << " vertex " << vertex << " coordinate " << c;
+          continue;
+        }
         const float light_spare = single->next_1d();
         const Vec2 light_point = single->next_2d();
         const float lobe = single->next_1d();

@@ -341,17 +341,21 @@ TEST(Lanes, ShadowRaysAreSpawnRayBetweens) {
 }
 
 // The lanes' shadow rays toward a direction are spawn_ray_toward's, bit for bit, for finite and
-// infinite distances, and their contributions direct_light's (the Lambertian lobe's value through a
-// Bsdf, the power heuristic or, for a punctual light, none), with AVX2 and without.
+// infinite distances, and their contributions direct_light's (the lobe's value through a Bsdf, the
+// power heuristic or, for a punctual light, none), with AVX2 and without, for Lambertian lanes and,
+// every other round, coated ones among them (Bsdf::coated_only: dielectric, metal and mixed layers
+// with relative indices above and below 1).
 TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
   Pcg32 rng(45, 46);
-  int compared = 0;
+  int compared = 0, coated_compared = 0;
   for (int round = 0; round < 2000; ++round) {
     const int n = 1 + round % LaneVertexBatch::kLanes;
     LaneVertexBatch batch;
     SurfaceHit from[LaneVertexBatch::kLanes];
     EmitterSample light[LaneVertexBatch::kLanes];
     Vec3 wo[LaneVertexBatch::kLanes];
+    SurfaceParams params[LaneVertexBatch::kLanes];
+    float eta[LaneVertexBatch::kLanes];
     const Rgb f(0.2f, 0.1f, 0.05f), beta(0.9f, 0.7f, 0.5f);
     for (int k = 0; k < n; ++k) {
       from[k].p = Vec3(rng.next_float(), rng.next_float(), rng.next_float()) * 100.0f - Vec3(50.0f);
@@ -367,18 +371,37 @@ TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
       l.distance = l.delta && rng.next_float() < 0.5f ? 0.5f + 10 * rng.next_float() : kInfinity;
       l.pdf = l.delta ? 0.25f : 0.1f + rng.next_float();
       l.incident = Rgb(rng.next_float(), 2 * rng.next_float(), 0.5f);
-      const int lane = batch.add({from[k].ns, from[k].ng, wo[k], f}, from[k].p, from[k].p_error);
+      // A Lambertian surface of albedo pi f, or a coated one.
+      SurfaceParams& surface = params[k];
+      surface.base_color = f * kPi;
+      surface.metallic = 0;
+      surface.specular = 0;
+      eta[k] = 1.0f;
+      const bool coated = round % 2 == 1 && rng.next_float() < 0.7f;
+      if (coated) {
+        surface.base_color = Rgb(rng.next_float(), rng.next_float(), rng.next_float());
+        surface.specular = 1;
+        surface.roughness = 0.04f + 0.96f * rng.next_float();
+        eta[k] = rng.next_float() < 0.2f ? 0.6f + 0.35f * rng.next_float() : 1.05f + rng.next_float();
+        const float metal = rng.next_float();
+        surface.metallic = metal < 0.5f ? 0.0f : metal < 0.75f ? 1.0f : rng.next_float();
+        // Half the directions toward the light in wo's hemisphere, where the glossy lobe lives.
+        if (rng.next_float() < 0.5f && dot(l.wi, from[k].ns) * dot(wo[k], from[k].ns) < 0) l.wi = -l.wi;
+      }
+      ASSERT_EQ(Bsdf::coated_only(surface, eta[k]), coated);
+      const LambertianSurface lambertian{from[k].ns, from[k].ng, wo[k], Lambertian{surface.base_color}.f()};
+      const CoatedSurface coat{surface.roughness * surface.roughness, eta[k], surface.metallic, surface.base_color,
+                               std::max(luminance(surface.base_color), 0.05f)};
+      const int lane = coated ? batch.add(lambertian, from[k].p, from[k].p_error, coat)
+                              : batch.add(lambertian, from[k].p, from[k].p_error);
       batch.request_light_toward(lane, from[k].triangle, beta, l);
     }
     const LightLanes both(batch);
     const LaneLightResult *out = both.avx2, *sse = both.sse;
     for (int k = 0; k < n; ++k) {
       ASSERT_EQ(out[k].cast, sse[k].cast);
-      // direct_light's steps for this sample at a Lambertian surface of albedo pi f.
-      SurfaceParams params;
-      params.base_color = f * kPi;
-      params.metallic = 0;
-      const Bsdf bsdf(params, from[k].ns, from[k].ng, wo[k], 1.0f);
+      // direct_light's steps for this sample.
+      const Bsdf bsdf(params[k], from[k].ns, from[k].ng, wo[k], eta[k]);
       const Bsdf::Value v = bsdf.evaluate(light[k].wi);
       const bool expected_cast = !is_black(light[k].incident) && !is_black(v.f_cos);
       ASSERT_EQ(out[k].cast, expected_cast) << "round " << round << " lane " << k;
@@ -394,9 +417,11 @@ TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
         EXPECT_EQ(r->ray.leaves.primitive, expected.leaves.primitive);
       }
       ++compared;
+      coated_compared += eta[k] != 1.0f;
     }
   }
   EXPECT_GT(compared, 10000);
+  EXPECT_GT(coated_compared, 2000);
 }
 
 // The lanes' bounces are Bsdf::sample's for a Lambertian lobe and for the coated mixture (every

@@ -1,5 +1,6 @@
 #include "materials/texture_lookup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -36,10 +37,15 @@ int wrap_texel(int i, int n, WrapMode mode) {
 
 namespace {
 
-// Integer part of a float coordinate, clamped to stay inside int for any uv.
+// A texel coordinate clamped to stay inside int for any finite uv (farther out, every float is an
+// integer, so the wraps and weights are those of the clamped value's).
+float clamp_coordinate(float v) { return std::min(std::max(v, -1e9f), 1e9f); }
+
+// floor(v) for a clamped coordinate, without libm's floorf (a call on x86-64 without SSE4.1): the
+// conversion truncates toward zero, one too high below zero unless v is an integer.
 int floor_to_int(float v) {
-  const float f = std::floor(v);
-  return f < -1e9f ? -1000000000 : (f > 1e9f ? 1000000000 : static_cast<int>(f));
+  const int i = static_cast<int>(v);
+  return i - int(static_cast<float>(i) > v);
 }
 
 // The texels a lookup at uv reads: the 2x2 block around it (bilinear, with the weights fx, fy of
@@ -51,8 +57,9 @@ struct Footprint {
 
 std::optional<Footprint> footprint(const ImageDesc& img, const TextureDesc& tex, Vec2 uv) {
   if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return std::nullopt;
-  const float x = uv.x * static_cast<float>(img.width) - 0.5f;  // texel centres at half-integers
-  const float y = uv.y * static_cast<float>(img.height) - 0.5f;
+  // Texel centres at half-integers.
+  const float x = clamp_coordinate(uv.x * static_cast<float>(img.width) - 0.5f);
+  const float y = clamp_coordinate(uv.y * static_cast<float>(img.height) - 0.5f);
   Footprint f;
   if (tex.nearest) {
     f.xa = wrap_texel(floor_to_int(x + 0.5f), img.width, tex.wrap_s);
@@ -60,8 +67,8 @@ std::optional<Footprint> footprint(const ImageDesc& img, const TextureDesc& tex,
     return f;
   }
   const int x0 = floor_to_int(x), y0 = floor_to_int(y);
-  f.fx = x - std::floor(x);
-  f.fy = y - std::floor(y);
+  f.fx = x - static_cast<float>(x0);  // x - floor(x), exactly: x0 is a float, and within 1 of x
+  f.fy = y - static_cast<float>(y0);
   // The texel after a repeating one is the next, or the first after the last: no second modulo.
   const auto next = [](int a, int first, int n, WrapMode mode) {
     return mode == WrapMode::Repeat ? (a + 1 == n ? 0 : a + 1) : wrap_texel(first + 1, n, mode);

@@ -77,6 +77,51 @@ TEST(WrapTexel, EveryCoordinateMatchesTheDefinitions) {
   EXPECT_EQ(mismatches, 0);
 }
 
+// A bilinear or nearest lookup reads the texels and weights glTF's definitions give, written with
+// std::floor: at coordinates of every magnitude and sign (texel edges, -0, between texels, far
+// enough out that floats hold no fraction, and past int's range), for every wrap mode, on an
+// image whose width is a power of two and one whose width is not.
+TEST(Textures, LookupsReadTheTexelsTheirCoordinatesFloorTo) {
+  const float coordinates[] = {-1e12f, -3e9f, -1e9f, -2e7f - 0.5f, -12345.678f, -1.0f, -0.5f, -1e-8f, -0.0f, 0.0f,
+                               1e-8f,  0.124f, 0.375f, 0.5f, 0x1.fffffep-1f, 1.0f, 7.25f, 1e7f + 0.5f, 3e9f, 1e12f};
+  int compared = 0;
+  for (int width : {4, 3}) {
+    SceneDesc scene;
+    ImageDesc& img = scene.images.emplace_back();
+    img.width = width;
+    img.height = 2;
+    img.channels = 1;
+    for (int i = 0; i < width * 2; ++i) img.texels.push_back(float(1 << i));  // every texel its own bit
+    for (WrapMode mode : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge})
+      for (bool nearest : {false, true}) {
+        scene.textures.push_back({.image = 0, .wrap_s = mode, .wrap_t = mode, .nearest = nearest});
+        const TextureRef ref{.texture = int(scene.textures.size()) - 1};
+        for (float u : coordinates)
+          for (float v : coordinates) {
+            const float x = u * float(img.width) - 0.5f, y = v * float(img.height) - 0.5f;
+            const auto floored = [](float c) { return int(std::clamp(std::floor(c), -1e9f, 1e9f)); };
+            float expected;
+            if (nearest) {
+              expected = img.texel(wrap_texel(floored(x + 0.5f), img.width, mode),
+                                   wrap_texel(floored(y + 0.5f), img.height, mode)).rgb.x;
+            } else {
+              const int x0 = floored(x), y0 = floored(y);
+              const float fx = x - std::floor(x), fy = y - std::floor(y);
+              const int xa = wrap_texel(x0, img.width, mode), xb = wrap_texel(x0 + 1, img.width, mode);
+              const int ya = wrap_texel(y0, img.height, mode), yb = wrap_texel(y0 + 1, img.height, mode);
+              expected = img.texel(xa, ya).rgb.x * ((1 - fx) * (1 - fy)) + img.texel(xb, ya).rgb.x * (fx * (1 - fy)) +
+                         img.texel(xa, yb).rgb.x * ((1 - fx) * fy) + img.texel(xb, yb).rgb.x * (fx * fy);
+            }
+            const Rgba got = lookup_texture(scene, ref, {u, v}, 0.0f);
+            ASSERT_EQ(got.rgb.x, expected) << "width " << width << ", mode " << int(mode) << ", nearest " << nearest
+                                           << ", uv " << u << " " << v;
+            ++compared;
+          }
+      }
+  }
+  EXPECT_EQ(compared, 2 * 3 * 2 * 20 * 20);
+}
+
 TEST(Textures, BaseColourTextureIsDecodedFromSrgbAndLookedUp) {
   const std::string dir = test::make_temp_dir("tex");
   // A 2x1 PNG: left texel sRGB (255, 128, 0), right texel (0, 64, 255).

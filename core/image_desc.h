@@ -95,34 +95,63 @@ struct ImageDesc {
       __builtin_prefetch(&texels[i]);
   }
 
-  // The texel at column x, row y, linear; grey is replicated to RGB, alpha is 1 without a channel.
-  Rgba texel(int x, int y) const {
-    const size_t texel = size_t(y) * size_t(width) + size_t(x), i = texel * size_t(channels);
+ private:
+  // f(read) for stored values v, `channels` per texel: the colour channels through `colour`, alpha
+  // through `alpha`.
+  template <typename Stored, typename Colour, typename Alpha, typename F>
+  decltype(auto) with_channels(const Stored* v, Colour colour, Alpha alpha, F& f) const {
+    const size_t w = size_t(width);
+    const auto at = [v, w](int x, int y, size_t n) { return v + (size_t(y) * w + size_t(x)) * n; };
+    switch (channels) {
+      case 1:
+        return f([=](int x, int y) { return Rgba{Rgb(colour(*at(x, y, 1))), 1.0f}; });
+      case 2:
+        return f([=](int x, int y) {
+          const Stored* p = at(x, y, 2);
+          return Rgba{Rgb(colour(p[0])), alpha(p[1])};
+        });
+      case 3:
+        return f([=](int x, int y) {
+          const Stored* p = at(x, y, 3);
+          return Rgba{Rgb(colour(p[0]), colour(p[1]), colour(p[2])), 1.0f};
+        });
+      default:
+        return f([=](int x, int y) {
+          const Stored* p = at(x, y, 4);
+          return Rgba{Rgb(colour(p[0]), colour(p[1]), colour(p[2])), alpha(p[3])};
+        });
+    }
+  }
+
+ public:
+  // f(read), where read(x, y) is texel(x, y) for this image's storage and channel count, chosen
+  // once: a lookup that reads several texels (a bilinear one reads four) decides how once, and
+  // each read is inlined.
+  template <typename F>
+  decltype(auto) with_reader(F&& f) const {
     if (!bytes.empty()) {
       const std::array<float, 256>& colour = srgb ? kSrgbCodes : kLinearCodes;
-      return decode(&bytes[i], [&](uint8_t c) { return colour[c]; }, [](uint8_t c) { return kLinearCodes[c]; });
+      return with_channels(bytes.data(), [&colour](uint8_t c) { return colour[c]; },
+                           [](uint8_t c) { return kLinearCodes[c]; }, f);
     }
-    if (!rgbe.empty()) return {rgbe_to_rgb(rgbe[texel]), 1.0f};
-    if (!halves.empty()) return decode(&halves[i], half_to_float, half_to_float);
+    if (!rgbe.empty()) {
+      const RgbeTexel* const t = rgbe.data();
+      const int w = width;
+      return f([t, w](int x, int y) { return Rgba{rgbe_to_rgb(t[size_t(y) * size_t(w) + size_t(x)]), 1.0f}; });
+    }
+    if (!halves.empty()) return with_channels(halves.data(), half_to_float, half_to_float, f);
     if (!words.empty()) {
       // code x (1 / 65535), as OpenImageIO converts 16-bit samples to float.
       const auto unorm = [](uint16_t w) { return float(w) * (1.0f / 65535.0f); };
-      return decode(&words[i], unorm, unorm);
+      return with_channels(words.data(), unorm, unorm, f);
     }
     const auto same = [](float v) { return v; };
-    return decode(&texels[i], same, same);
+    return with_channels(texels.data(), same, same, f);
   }
 
- private:
-  // A texel from its stored values v: the colour channels through `colour`, alpha through `alpha`.
-  template <typename Stored, typename Colour, typename Alpha>
-  Rgba decode(const Stored* v, Colour colour, Alpha alpha) const {
-    switch (channels) {
-      case 1: return {Rgb(colour(v[0])), 1.0f};
-      case 2: return {Rgb(colour(v[0])), alpha(v[1])};
-      case 3: return {Rgb(colour(v[0]), colour(v[1]), colour(v[2])), 1.0f};
-      default: return {Rgb(colour(v[0]), colour(v[1]), colour(v[2])), alpha(v[3])};
-    }
+  // The texel at column x, row y, linear; grey is replicated to RGB, alpha is 1 without a channel.
+  Rgba texel(int x, int y) const {
+    return with_reader([x, y](const auto& read) { return read(x, y); });
   }
 };
 

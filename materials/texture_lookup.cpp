@@ -85,11 +85,12 @@ Rgba filtered_texel(const ImageDesc& img, const TextureDesc& tex, Vec2 uv) {
   const std::optional<Footprint> f = footprint(img, tex, uv);
   if (!f) return {};
   if (tex.nearest) return img.texel(f->xa, f->ya);
-  const Rgba a = img.texel(f->xa, f->ya), b = img.texel(f->xb, f->ya), c = img.texel(f->xa, f->yb),
-             d = img.texel(f->xb, f->yb);
-  const float fx = f->fx, fy = f->fy;
-  const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
-  return {a.rgb * wa + b.rgb * wb + c.rgb * wc + d.rgb * wd, a.a * wa + b.a * wb + c.a * wc + d.a * wd};
+  return img.with_reader([&f = *f](const auto& read) {
+    const Rgba a = read(f.xa, f.ya), b = read(f.xb, f.ya), c = read(f.xa, f.yb), d = read(f.xb, f.yb);
+    const float fx = f.fx, fy = f.fy;
+    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
+    return Rgba{a.rgb * wa + b.rgb * wb + c.rgb * wc + d.rgb * wd, a.a * wa + b.a * wb + c.a * wc + d.a * wd};
+  });
 }
 
 // The MIP level a footprint of uv_width (in the mesh's uv units) reads, as log2 of the level-0

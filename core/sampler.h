@@ -29,7 +29,8 @@ class Sampler {
     const float a = next_1d();
     return {a, next_1d()};
   }
-  // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give, written
+  // Five draws at once, the values next_1d, next_2d, next_1d, next_2d, next_1d would give (Sobol
+  // draws the light point jointly with the bounce before it instead: SobolSampler), written
   // into `v` where the caller keeps them: returned through a temporary, the copy's wide loads of
   // the callee's narrow stores stalled on store forwarding (docs/PERFORMANCE.md, session 44).
   virtual void draw_vertex(VertexSamples& v) {

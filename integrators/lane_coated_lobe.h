@@ -1,9 +1,12 @@
 // lanes::coated_*: glTF's opaque metallic-roughness BSDF (GGX metal; a GGX layer over a Lambertian lobe) in lanes.
 #pragma once
 
+#include <algorithm>
+
 #include "core/constants.h"
 #include "integrators/lane_lambertian_lobe.h"
 #include "integrators/lane_math.h"
+#include "materials/surface_params.h"
 
 namespace prism {
 
@@ -15,6 +18,13 @@ struct CoatedSurface {
   float alpha = 0, eta = 1, metallic = 0;
   Rgb base_color;
   float diffuse_albedo = 0;
+
+  // Bsdf::Bsdf's constants for the lobes and the diffuse lobe's pick, for a surface of `params`
+  // at relative index eta.
+  static CoatedSurface of(const SurfaceParams& params, float eta) {
+    return {params.roughness * params.roughness, eta, std::clamp(params.metallic, 0.0f, 1.0f), params.base_color,
+            std::max(luminance(params.base_color), 0.05f)};
+  }
 };
 
 namespace lanes {

@@ -319,11 +319,8 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   if (lambertian_lane) {
     lane = lanes->add({ns, hit.ng, wo, Lambertian{albedo()}.f()}, hit.p, hit.p_error);
   } else if (coated_lane) {
-    // Bsdf::Bsdf's constants for the lobes and the diffuse lobe's pick.
     const SurfaceParams& p = params();
-    const CoatedSurface coat{p.roughness * p.roughness, eta, std::clamp(p.metallic, 0.0f, 1.0f), p.base_color,
-                             std::max(luminance(p.base_color), 0.05f)};
-    lane = lanes->add({ns, hit.ng, wo, Lambertian{p.base_color}.f()}, hit.p, hit.p_error, coat);
+    lane = lanes->add({ns, hit.ng, wo, Lambertian{p.base_color}.f()}, hit.p, hit.p_error, CoatedSurface::of(p, eta));
   }
 
   // A vertex in the lanes, where casters may aim bounces, makes its strategy in li_packet's slot for

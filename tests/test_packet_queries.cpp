@@ -390,9 +390,7 @@ TEST(Lanes, ShadowRaysTowardADirectionAreSpawnRayTowards) {
       }
       ASSERT_EQ(Bsdf::coated_only(surface, eta[k]), coated);
       const LambertianSurface lambertian{from[k].ns, from[k].ng, wo[k], Lambertian{surface.base_color}.f()};
-      const CoatedSurface coat{surface.roughness * surface.roughness, eta[k], surface.metallic, surface.base_color,
-                               std::max(luminance(surface.base_color), 0.05f)};
-      const int lane = coated ? batch.add(lambertian, from[k].p, from[k].p_error, coat)
+      const int lane = coated ? batch.add(lambertian, from[k].p, from[k].p_error, CoatedSurface::of(surface, eta[k]))
                               : batch.add(lambertian, from[k].p, from[k].p_error);
       batch.request_light_toward(lane, from[k].triangle, beta, l);
     }
@@ -474,10 +472,9 @@ TEST(Lanes, BouncesAreBsdfSamplesAndSpawnedRays) {
       lobe_draws[k] = rng.next_float();
       // A lane that asks for no bounce beside those that do (it would ask for its light sample alone).
       const LambertianSurface surface{hit.ns, hit.ng, wo, Lambertian{params.base_color}.f()};
-      const CoatedSurface coat{params.roughness * params.roughness, eta, params.metallic, params.base_color,
-                               std::max(luminance(params.base_color), 0.05f)};
       ASSERT_EQ(Bsdf::coated_only(params, eta), coated);
-      const int lane = coated ? batch.add(surface, hit.p, hit.p_error, coat) : batch.add(surface, hit.p, hit.p_error);
+      const int lane = coated ? batch.add(surface, hit.p, hit.p_error, CoatedSurface::of(params, eta))
+                              : batch.add(surface, hit.p, hit.p_error);
       asked[k] = rng.next_float() < 0.8f;
       if (asked[k]) batch.request_bounce(lane, draws[k], lobe_draws[k]);
       coated_lanes += coated && asked[k];

@@ -110,6 +110,9 @@ int converge(const ConvergeOptions& o) {
   // without bias, so only a measurement can choose it (docs/PERFORMANCE.md).
   std::vector<int> rr_starts;  // empty: the render's own
   if (o.rr_start_depths) rr_starts = count_list(*o.rr_start_depths, "--rr-start-depths", "3,4,5");
+  // So is path splitting: it buys less noise per camera sample with more time per camera sample.
+  std::vector<int> splits;  // empty: the render's own
+  if (o.splits) splits = count_list(*o.splits, "--splits", "1,2,4");
   const std::vector<std::string> samplers = split_list(o.samplers), integrators = split_list(o.integrators);
   const std::vector<std::string> allocations = split_list(o.allocations);
   if (allocations.empty()) throw UsageError("--allocations needs at least one name");
@@ -131,6 +134,7 @@ int converge(const ConvergeOptions& o) {
   }
   PreparedRender p = prepare_render(ro);
   if (rr_starts.empty()) rr_starts.push_back(p.settings.rr_start_depth);
+  if (splits.empty()) splits.push_back(p.settings.split);
   build_scene(p, ro.quiet);
   const Camera camera(p.camera, p.settings.width, p.settings.height);
   if (reference && (reference->width != p.settings.width || reference->height != p.settings.height))
@@ -157,11 +161,13 @@ int converge(const ConvergeOptions& o) {
   for (const std::string& integrator_name : integrators)
     for (const std::string& sampler : samplers)
       for (const int rr_start : rr_starts)
+      for (const int split : splits)
       for (const std::string& allocation : allocations) {
         RenderSettings s = p.settings;
         s.integrator = integrator_name;
         s.sampler = sampler;
         s.rr_start_depth = rr_start;
+        s.split = split;
         s.allocation = allocation;
         std::unique_ptr<Integrator> integrator;
         try {
@@ -182,6 +188,7 @@ int converge(const ConvergeOptions& o) {
         }
         const std::string base =
             integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : "") +
+            (splits.size() > 1 ? fmt::format("/split{}", split) : "") +
             (allocations.size() > 1 ? "/" + allocation : "");
         for (const Budget kind : kinds) {
           PlotSeries series{base + (kinds.size() == 1 ? "" : budget_suffix(kind)), {}};
@@ -274,6 +281,9 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--rr-start-depths", o.rr_start_depths,
                   "Bounces from which Russian roulette starts, a comma-separated list to compare (default 4; series "
                   "are named INTEGRATOR/SAMPLER/rrN when there are several)");
+  cmd->add_option("--splits", o.splits,
+                  "Path splits to compare (continuations per camera sample past its first vertex, as render --split), "
+                  "a comma-separated list such as 1,2,4 (default 1; series are named .../splitK when there are several)");
   cmd->add_option("--camera", o.render.settings.camera, "Camera by name or index (default: the first)");
   cmd->add_option("--seed", o.render.settings.seed, "Random seed of the series (default 0)");
   cmd->add_option("--threads", o.render.settings.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);

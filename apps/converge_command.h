@@ -24,6 +24,7 @@ struct ConvergeOptions {
   std::string integrators = "path";
   std::string allocations = "uniform";  // RenderSettings::allocation values to compare
   std::optional<std::string> rr_start_depths;  // a list to compare; the render default when absent
+  std::optional<std::string> splits;           // path splits to compare; the render default (1) when absent
   std::string output_dir = ".";
 };
 

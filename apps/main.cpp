@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
   cmd->add_option("--rr-start-depth", render.settings.rr_start_depth,
                   "Bounce from which Russian roulette may end paths (default 4; unbiased, trades noise for speed)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--split", render.settings.split,
+                  "Continuations of each camera sample past its first vertex (path integrator; unbiased): the light "
+                  "seen through the first bounce gets that many samples per camera sample (default 1 = none)")
+      ->check(CLI::Range(1, kMaxSplit));
   cmd->add_option("--clamp-indirect", render.settings.clamp_indirect,
                   "Clamp each sample's indirect light to this maximum (biased; removes fireflies; default 0 = off)")
       ->check(CLI::NonNegativeNumber);

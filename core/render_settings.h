@@ -10,6 +10,10 @@
 
 namespace prism {
 
+// The most continuations a path may split into at its first vertex (RenderSettings::split): past a
+// few the camera sample's own noise (its pixel filter, the first vertex) dominates anyway.
+inline constexpr int kMaxSplit = 64;
+
 struct RenderSettings {
   int width = 0, height = 0;   // 0 = from the camera's aspect ratio (see default_resolution)
   int spp = 64;                // samples per pixel; the most any pixel gets under a time or noise budget
@@ -17,6 +21,7 @@ struct RenderSettings {
   int max_diffuse_depth = -1;  // non-delta (diffuse and glossy) bounces; -1 = no limit of its own,
                                // 0 = direct light only on such surfaces (mirrors and glass go on)
   int rr_start_depth = 4;      // Russian roulette from this bounce on
+  int split = 1;               // continuations of each camera sample past its first vertex (1: none)
   float clamp_indirect = 0;    // > 0: each sample's indirect light is scaled down to this maximum
                                // component (biased, removes fireflies); 0 = off
   // The share of bounce directions at reflecting surfaces aimed at caustic casters (smooth metal
@@ -53,7 +58,7 @@ struct RenderSettings {
 
 // Settings given by a job file or on the command line; unset fields leave the settings alone.
 struct RenderSettingsOverride {
-  std::optional<int> width, height, spp, max_depth, max_diffuse_depth, rr_start_depth, min_spp, threads;
+  std::optional<int> width, height, spp, max_depth, max_diffuse_depth, rr_start_depth, min_spp, threads, split;
   std::optional<float> clamp_indirect, caster_share;
   std::optional<double> time_budget, noise_target;
   std::optional<uint64_t> seed;
@@ -70,6 +75,7 @@ struct RenderSettingsOverride {
     if (max_diffuse_depth) s.max_diffuse_depth = *max_diffuse_depth;
     if (rr_start_depth) s.rr_start_depth = *rr_start_depth;
     if (min_spp) s.min_spp = *min_spp;
+    if (split) s.split = *split;
     if (clamp_indirect) s.clamp_indirect = *clamp_indirect;
     if (caster_share) s.caster_share = *caster_share;
     if (time_budget) s.time_budget = *time_budget;

@@ -10,6 +10,13 @@
 
 namespace prism {
 
+// Where a sampler stands in its pixel's samples: the sample index, and how many draws it made of
+// that sample (its dimension, as the sampler counts them).
+struct SamplerPosition {
+  uint64_t index = 0;
+  uint32_t dimension = 0;
+};
+
 // The draws a path tracer makes at each vertex of a path, in the order a sampler hands them out.
 struct VertexSamples {
   float light_spare = 0;  // places the light point where light_point.x runs short (1D): Emitters::sample
@@ -25,6 +32,11 @@ class Sampler {
   // Positions the sampler at sample `index` of pixel (x, y), dimension 0.
   virtual void start_pixel_sample(int x, int y, uint64_t index) = 0;
   virtual float next_1d() = 0;
+  virtual SamplerPosition position() const = 0;
+  // Moves to another position of the same pixel: the values then drawn are those
+  // start_pixel_sample(x, y, to.index) and to.dimension draws after it would give. Path splitting
+  // (PathIntegrator) draws each continuation of a camera sample from a sample index of its own.
+  virtual void move_to(const SamplerPosition& to) = 0;
   virtual Vec2 next_2d() {
     const float a = next_1d();
     return {a, next_1d()};
@@ -56,13 +68,27 @@ class IndependentSampler final : public Sampler {
   explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
 
   void start_pixel_sample(int x, int y, uint64_t index) override {
+    x_ = x;
+    y_ = y;
+    at_ = {index, 0};
     rng_.seed(hash_values(static_cast<uint64_t>(x), static_cast<uint64_t>(y), seed_), hash_values(index, seed_));
   }
-  float next_1d() override { return rng_.next_float(); }
+  float next_1d() override {
+    ++at_.dimension;
+    return rng_.next_float();
+  }
+  SamplerPosition position() const override { return at_; }
+  void move_to(const SamplerPosition& to) override {
+    start_pixel_sample(x_, y_, to.index);
+    at_.dimension = to.dimension;
+    rng_.advance(to.dimension);  // one value per draw
+  }
 
  private:
   uint64_t seed_;
   Pcg32 rng_;
+  int x_ = 0, y_ = 0;
+  SamplerPosition at_;
 };
 
 }  // namespace prism

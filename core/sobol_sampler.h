@@ -40,6 +40,12 @@ class SobolSampler final : public Sampler {
     dimension_ = 0;
   }
 
+  SamplerPosition position() const override { return {reverse_bits(reversed_index_), dimension_}; }
+  void move_to(const SamplerPosition& to) override {
+    reversed_index_ = reverse_bits(static_cast<uint32_t>(to.index));
+    dimension_ = to.dimension;
+  }
+
   float next_1d() override { return owen_sobol_1d(reversed_index_, next_seeds()); }
   Vec2 next_2d() override { return owen_sobol_2d(reversed_index_, next_seeds()); }
   // A vertex's five draws, as next_1d, next_2d, next_1d, next_2d, next_1d would make them but for

@@ -27,9 +27,19 @@ LightSampling light_sampling(const std::string& name) {
 }
 
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings) {
-  if (settings.integrator == "path")
-    return std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth, settings.max_diffuse_depth,
-                                            settings.clamp_indirect, settings.caster_share);
+  if (settings.split < 1 || settings.split > kMaxSplit)
+    throw std::invalid_argument("split " + std::to_string(settings.split) + " is out of range (1 to " +
+                                std::to_string(kMaxSplit) + ")");
+  if (settings.integrator == "path") {
+    auto path = std::make_unique<PathIntegrator>(settings.max_depth, settings.rr_start_depth,
+                                                 settings.max_diffuse_depth, settings.clamp_indirect,
+                                                 settings.caster_share);
+    path->set_split(settings.split);
+    return path;
+  }
+  if (settings.split > 1)
+    throw std::invalid_argument("split " + std::to_string(settings.split) + " is the path integrator's; the " +
+                                settings.integrator + " integrator does not split paths");
   if (settings.integrator == "whitted") return std::make_unique<WhittedIntegrator>(settings.max_depth);
   throw std::invalid_argument("unknown integrator '" + settings.integrator + "' (known: " + joined(integrator_names()) +
                               ")");

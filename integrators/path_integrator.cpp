@@ -83,6 +83,9 @@ struct PathIntegrator::Arrival {
   const EnvironmentLight::Sample* sky_light = nullptr;  // the light sample, where those draws chose a map's sky
   const std::optional<Emitters::Pick>* light = nullptr;  // the light those draws chose, where li_packet chose it
   const EnvironmentPortals::View* portal_view = nullptr;  // the sky's portals seen from the hit, where made
+  // What the vertex's light sample counts for: li_split has one continuation take the first vertex's
+  // sample for all of them (weight split_), and the others none (0: advance takes no sample).
+  float light_weight = 1;
   // li_packet's slot for how the vertex draws its bounce, where casters may aim bounces (null
   // elsewhere): the lanes' light sample (LaneVertexBatch::weigh_later) and bounce are weighed
   // against it after their run.
@@ -335,7 +338,7 @@ PathIntegrator::Step PathIntegrator::advance(const Scene& scene, Path& path, con
   }
 
   // Next-event estimation: one light, chosen as the scene's light sampler says; a point on it for area lights.
-  if (!emitters.empty() && (in_lanes || !bsdf().is_delta())) {
+  if (!emitters.empty() && at.light_weight > 0 && (in_lanes || !bsdf().is_delta())) {
     if (!(in_lanes &&
           queue_direct_light<kAimsAtCasters>(scene, hit, bounce, path, material, u, at, shadow, *lanes, lane))) {
       shadow = direct_light(scene, hit, bsdf(), bounce, path.media, material, from_front, u, at.sky_light, at.light,
@@ -451,20 +454,79 @@ RadianceSample PathIntegrator::li(const Scene& scene, const Ray& camera_ray, Sam
 void PathIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
                                RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
   constexpr int kLanes = kPathsInLockstep;
-  const bool aims_at_casters = caster_share_ > 0 && !scene.casters().empty();
   for (int first = 0; first < n; first += kLanes) {
     const int m = std::min(n - first, kLanes);
     AovSample* const* lane_aovs = aovs ? aovs + first : nullptr;
-    if (aims_at_casters)
-      li_lockstep<true>(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first);
+    if (split_ > 1 && max_depth_ > 0)
+      li_split(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first);
     else
-      li_lockstep<false>(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first);
+      lockstep(scene, camera_rays + first, samplers + first, m, counters, lane_aovs, out + first, nullptr);
+  }
+}
+
+void PathIntegrator::lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
+                              RayCounters& counters, AovSample* const* aovs, RadianceSample* out,
+                              const CameraHits* camera_hits) const {
+  if (caster_share_ > 0 && !scene.casters().empty())
+    li_lockstep<true>(scene, camera_rays, samplers, n, counters, aovs, out, camera_hits);
+  else
+    li_lockstep<false>(scene, camera_rays, samplers, n, counters, aovs, out, camera_hits);
+}
+
+// Splitting at the first vertex: the camera rays are traced once, and the first vertex takes one
+// light sample, drawn at the camera sample's index s (with its jitter, as one net: SobolSampler);
+// then each of the split_ continuations c draws its bounce there and the rest of its path from
+// sample index s * split_ + c of the pixel. The continuations of a pixel's samples 0 .. N-1 are
+// then its samples 0 .. N * split_ - 1, as well stratified as a render with that many, and a
+// render split into passes or slices draws the same values. The camera sample's estimate is the
+// light sample's (in continuation 0, weighted split_) and the continuations' mean: the light a
+// pixel sees through its first bounce gets split_ samples per camera sample, as Arnold's diffuse
+// and specular samples give it. With one light sample against split_ bounces the MIS weights
+// still sum to one for every direction, so the estimate stays unbiased.
+void PathIntegrator::li_split(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
+                              RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
+  constexpr int kLanes = kPathsInLockstep;
+  CameraHits camera;
+  scene.intersect_packet(camera_rays, n, camera.hits, camera.found, true);
+  counters.camera += uint64_t(n);
+  SamplerPosition after_camera[kLanes];
+  for (int k = 0; k < n; ++k) {
+    after_camera[k] = samplers[k]->position();
+    if (camera.found[k]) samplers[k]->draw_vertex(camera.light_draws[k]);
+  }
+  AovSample more[kLanes];  // the AOVs of continuations after the first, whose first-hit records repeat its own
+  AovSample* more_aovs[kLanes];
+  for (int k = 0; k < n; ++k) more_aovs[k] = &more[k];
+  RadianceSample part[kLanes];
+  for (int c = 0; c < split_; ++c) {
+    camera.light_weight = c == 0 ? float(split_) : 0.0f;
+    for (int k = 0; k < n; ++k)
+      samplers[k]->move_to({after_camera[k].index * uint64_t(split_) + uint64_t(c), after_camera[k].dimension});
+    lockstep(scene, camera_rays, samplers, n, counters, aovs ? (c == 0 ? aovs : more_aovs) : nullptr,
+             c == 0 ? out : part, &camera);
+    if (c == 0) continue;
+    for (int k = 0; k < n; ++k) {
+      out[k].radiance += part[k].radiance;
+      if (!aovs) continue;
+      aovs[k]->emission += more[k].emission;
+      aovs[k]->direct += more[k].direct;
+      aovs[k]->indirect += more[k].indirect;
+    }
+  }
+  const float mean = 1.0f / float(split_);
+  for (int k = 0; k < n; ++k) {
+    out[k].radiance *= mean;
+    if (!aovs) continue;
+    aovs[k]->emission *= mean;
+    aovs[k]->direct *= mean;
+    aovs[k]->indirect *= mean;
   }
 }
 
 template <bool kAimsAtCasters>
 void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
-                                 RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const {
+                                 RayCounters& counters, AovSample* const* aovs, RadianceSample* out,
+                                 const CameraHits* camera_hits) const {
   constexpr int kLanes = kPathsInLockstep;
   Path paths[kLanes];
   int live[kLanes];  // the paths still in flight, in lane order
@@ -473,8 +535,8 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
     paths[k].sampler = samplers[k];
     paths[k].aov = aovs ? aovs[k] : nullptr;
     live[k] = k;
-    ++counters.camera;
   }
+  if (!camera_hits) counters.camera += uint64_t(n);
   // One bounce of every live path per round: their rays are traced together, then each path
   // shades its hit, then their shadow rays are traced together. A path's draws do not depend on
   // its shadow ray's answer, so deferring that answer changes nothing but the order of queries.
@@ -516,7 +578,15 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
   for (int m = n; m > 0;) {
     for (int i = 0; i < m; ++i) rays[i] = paths[live[i]].ray;
     const bool camera = paths[live[0]].vertices == 0;  // lanes advance together: all or none are camera rays
-    scene.intersect_packet(rays, m, hits, found, camera);
+    // A continuation's first vertex (li_split): its light sample's draws and weight are the camera sample's.
+    const CameraHits* split_vertex = camera ? camera_hits : nullptr;
+    const float light_weight = split_vertex ? split_vertex->light_weight : 1.0f;
+    if (split_vertex) {
+      std::copy(split_vertex->hits, split_vertex->hits + m, hits);
+      std::copy(split_vertex->found, split_vertex->found + m, found);
+    } else {
+      scene.intersect_packet(rays, m, hits, found, camera);
+    }
     // The rays' unit directions, made together: one at a time, each lane waited for its square root
     // and division at the top of advance.
     Vec3 unit_dir[kLanes];
@@ -545,7 +615,11 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
       Path& path = paths[live[i]];
       if (!found[i] || !scatters_next(path)) continue;
       path.sampler->draw_vertex(draws[i]);
-      if (!sky.has_map()) continue;
+      if (split_vertex) {
+        draws[i].light_spare = split_vertex->light_draws[i].light_spare;
+        draws[i].light_point = split_vertex->light_draws[i].light_point;
+      }
+      if (!sky.has_map() || light_weight == 0) continue;
       if (const std::optional<Vec2> d = emitters.environment_map_draw(draws[i].light_spare, draws[i].light_point)) {
         sky_draw[sky_draws] = *d;
         sky_draw_lane[sky_draws++] = i;
@@ -559,7 +633,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
     // Where the light a draw chooses depends on the shading point (a light tree), the lanes' lights
     // are chosen together: their walks down the tree, each a chain of cache misses on a large one,
     // overlap. Lanes whose BSDF turns out to be a delta lobe leave theirs unused.
-    if (emitters.picks_ahead()) {
+    if (emitters.picks_ahead() && light_weight > 0) {
       Vec3 pick_p[kLanes], pick_n[kLanes];
       float pick_u[kLanes];
       int pick_lane[kLanes], picks = 0;
@@ -585,6 +659,7 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
       }
       Arrival at;
       at.dir = unit_dir[i];
+      at.light_weight = light_weight;
       if (found[i]) {
         at.hit = &hits[i];
         if constexpr (kAimsAtCasters) at.bounce = &bounces->lane[i];
@@ -644,6 +719,8 @@ void PathIntegrator::li_lockstep(const Scene& scene, const Ray* camera_rays, Sam
         shadow_iors[s] = shadows[i].medium_ior;
         shadow_lane[s++] = i;
       }
+    if (light_weight != 1.0f)
+      for (int j = 0; j < s; ++j) shadows[shadow_lane[j]].contribution *= light_weight;
     shadow_transmittance(scene, shadow_rays, shadow_iors, s, through, counters);
     for (int j = 0; j < s; ++j)
       if (!is_black(through[j])) *shadows[shadow_lane[j]].target += shadows[shadow_lane[j]].contribution * through[j];

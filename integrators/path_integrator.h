@@ -37,12 +37,24 @@ class PathIntegrator final : public Integrator {
   // drawn by the scalar code), and the bounce. On by default; either way the images are the same
   // bits, so off serves tests and measurements.
   void set_lanes(bool on) { lanes_ = on; }
+  // Splits every path at its first vertex into `continuations` paths from there on, whose mean is
+  // the camera sample's estimate (li_split); 1: no splitting.
+  void set_split(int continuations) { split_ = continuations; }
 
  private:
   struct Path;
   struct ShadowQuery;
   struct Bounce;
   struct Arrival;
+  // What li_split hands each continuation of its camera samples: what the camera rays found, the
+  // draws of the first vertex's light sample, and its weight (split_ in the continuation that
+  // takes the sample, 0 in the others).
+  struct CameraHits {
+    SurfaceHit hits[kPathsInLockstep];
+    bool found[kPathsInLockstep];
+    VertexSamples light_draws[kPathsInLockstep];
+    float light_weight = 1;
+  };
 
   // Whether a path scatters at the surface its ray finds (or only gathers its emission there).
   bool scatters_next(const Path& path) const;
@@ -60,10 +72,18 @@ class PathIntegrator final : public Integrator {
   template <bool kAimsAtCasters>
   Step advance(const Scene& scene, Path& path, const Arrival& at, ShadowQuery& shadow, RayCounters& counters,
                LaneVertexBatch* lanes = nullptr) const;
-  // li_packet for at most kPathsInLockstep paths.
+  // li_packet for at most kPathsInLockstep paths; camera_hits: what the camera rays find, where
+  // known already (null: traced here, and counted).
   template <bool kAimsAtCasters>
   void li_lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n,
-                   RayCounters& counters, AovSample* const* aovs, RadianceSample* out) const;
+                   RayCounters& counters, AovSample* const* aovs, RadianceSample* out,
+                   const CameraHits* camera_hits) const;
+  // li_lockstep for the scene: with or without the work for caustic casters.
+  void lockstep(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
+                AovSample* const* aovs, RadianceSample* out, const CameraHits* camera_hits) const;
+  // li_packet for at most kPathsInLockstep camera rays, each path split at its first vertex.
+  void li_split(const Scene& scene, const Ray* camera_rays, Sampler* const* samplers, int n, RayCounters& counters,
+                AovSample* const* aovs, RadianceSample* out) const;
   // The rest of a bounce once its direction is drawn (bs): the throughput, the path's record of the
   // vertex, the next ray (from `origin` where lane_vertices offset it already) and Russian roulette.
   // False when the path ends.
@@ -105,6 +125,7 @@ class PathIntegrator final : public Integrator {
   float clamp_indirect_;
   float caster_share_;
   bool lanes_ = true;
+  int split_ = 1;
 };
 
 }  // namespace prism

@@ -30,7 +30,7 @@ class JobParser {
     job.path = file_;
     expect_object(root, "$");
     warn_unknown(root, "$", {"scene", "output", "preview", "pixel_type", "compression", "multipart", "stamp", "aovs", "crop", "sample_range", "resolution", "spp", "max_depth", "max_diffuse_depth", "seed", "camera",
-                             "integrator", "sampler", "light_sampler", "texture_filter", "allocation", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "clamp_indirect", "caster_share",
+                             "integrator", "sampler", "light_sampler", "texture_filter", "allocation", "time", "checkpoint", "noise", "min_spp", "rr_start_depth", "split", "clamp_indirect", "caster_share",
                              "materials", "spheres", "lights", "environment"});
     const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
     auto relative = [&](const std::string& p) {
@@ -112,6 +112,7 @@ class JobParser {
     if (root.contains("min_spp")) job.settings.min_spp = int_at(root["min_spp"], "$.min_spp", 1, 1 << 30);
     if (root.contains("rr_start_depth"))
       job.settings.rr_start_depth = int_at(root["rr_start_depth"], "$.rr_start_depth", 1, 1 << 30);
+    if (root.contains("split")) job.settings.split = int_at(root["split"], "$.split", 1, kMaxSplit);
     if (root.contains("clamp_indirect"))
       job.settings.clamp_indirect = number_at(root["clamp_indirect"], "$.clamp_indirect", 0, 3.0e38);
     if (root.contains("caster_share"))

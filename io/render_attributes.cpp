@@ -36,6 +36,8 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
       if (s.aovs.has(Aov(i))) names += (names.empty() ? "" : ",") + aov_names()[i];
     a.push_back({"prism/aovs", names});
   }
+  // Written only when paths split, so files of renders without it keep their bytes.
+  if (s.split > 1) a.push_back({"prism/split", s.split});
   // Written only when samples are shared by error, so files of uniform renders keep their bytes.
   if (s.allocation != "uniform") a.push_back({"prism/allocation", s.allocation});
   if (adaptive || s.allocation != "uniform") a.push_back({"prism/minSpp", s.min_spp});

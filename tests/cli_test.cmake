@@ -131,6 +131,16 @@ run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/allocated.exr" --allocation err
 expect_match("${last_out}" "\\(mean 16\\.0\\) spp" "--allocation error missed its mean spp")
 file(STRINGS "${WORK_DIR}/allocated.exr" header LIMIT_INPUT 8000)
 expect_match("${header}" "prism/allocation;string;error" "the header does not record the allocation")
+# Path splitting: recorded in the header (a render resumed or merged with another split is refused);
+# only the path tracer splits.
+run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/split.exr" --split 2 --spp 4 --res 16x16)
+file(STRINGS "${WORK_DIR}/split.exr" header LIMIT_INPUT 8000)
+expect_match("${header}" "prism/split;int" "the header does not record the split")
+run(2 "${PRISM}" render "${box}" --split 2 --integrator whitted -o "${WORK_DIR}/x.exr")
+expect_match("${last_err}" "split 2 is the path integrator's; the whitted integrator does not split paths"
+             "unclear --split message for whitted")
+run(2 "${PRISM}" render "${box}" --split 0 -o "${WORK_DIR}/x.exr")
+expect_match("${last_err}" "--split" "unclear --split 0 message")
 # Texture filtering: MIP levels on request, recorded in the header; an unknown filter is refused.
 run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/trilinear.exr" --texture-filter trilinear --spp 4 --res 16x16)
 file(STRINGS "${WORK_DIR}/trilinear.exr" header LIMIT_INPUT 8000)

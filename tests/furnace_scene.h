@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/renderer.h"
@@ -55,9 +56,9 @@ inline FurnaceRender render_furnace(const RenderSettings& settings) {
 
 // Renders a small image from inside the enclosure with each sampler; each pixel mean is an
 // independent estimate (pixels are scrambled independently), so the image mean's standard error
-// is the spread of pixel means over sqrt(pixels). caster_share is the path tracer's.
+// is the spread of pixel means over sqrt(pixels). caster_share and split are the path tracer's.
 inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo, int max_depth, int rr_start,
-                           double expected, float caster_share = 0) {
+                           double expected, float caster_share = 0, int split = 1) {
   const Scene scene(std::move(desc));
   for (const std::string& sampler : sampler_names()) {
     RenderSettings settings;
@@ -68,7 +69,8 @@ inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo,
     settings.seed = 1234;
     settings.sampler = sampler;
     Film film(settings.width, settings.height);
-    const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth, -1, 0, caster_share);
+    PathIntegrator integrator(settings.max_depth, settings.rr_start_depth, -1, 0, caster_share);
+    integrator.set_split(split);
     const RenderStats stats = render(scene, Camera(cam, settings.width, settings.height), integrator, settings, film);
     EXPECT_EQ(stats.nonfinite_samples, 0u);
     for (int c = 0; c < 3; ++c) {
@@ -83,7 +85,7 @@ inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo,
       const double tolerance = kSigmas * pixels.standard_error() + 1e-5 * expected;
       EXPECT_NEAR(pixels.mean(), expected, tolerance) << sampler << " sampler, channel " << c << ", albedo "
                                                       << albedo << ", depth " << max_depth << ", rr from " << rr_start
-                                                      << ", caster share " << caster_share;
+                                                      << ", caster share " << caster_share << ", split " << split;
     }
   }
 }
@@ -92,6 +94,41 @@ inline void expect_furnace(SceneDesc desc, const CameraDesc& cam, double albedo,
 inline void expect_furnace(SceneDesc desc, const Vec3& eye, double le, double albedo, int max_depth, int rr_start) {
   expect_furnace(std::move(desc), furnace_camera(eye), albedo, max_depth, rr_start,
                  furnace_radiance(le, albedo, max_depth));
+}
+
+// Renders the furnace box (emission 1, albedo 0.5, depth 4, no roulette); returns each pixel's
+// error against the exact radiance (green channel). split: the path tracer's.
+inline std::vector<double> furnace_errors(const std::string& sampler, int spp, int size, uint64_t seed, int split = 1) {
+  const int depth = 4;
+  const Scene scene(furnace_box(1.0, 0.5));
+  RenderSettings settings;
+  settings.width = settings.height = size;
+  settings.spp = spp;
+  settings.max_depth = depth;
+  settings.rr_start_depth = 1 << 20;
+  settings.seed = seed;
+  settings.sampler = sampler;
+  Film film(size, size);
+  PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
+  integrator.set_split(split);
+  render(scene, Camera(furnace_camera(), size, size), integrator, settings, film);
+  const double truth = furnace_radiance(1.0, 0.5, depth);
+  std::vector<double> errors;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      float rgba[4];
+      film.mean(x, y, rgba);
+      errors.push_back(rgba[1] - truth);
+    }
+  return errors;
+}
+
+// Root mean square error over pixels, and its standard error (from the spread of squared errors).
+inline std::pair<double, double> rmse_with_error(const std::vector<double>& errors) {
+  RunningStats sq;
+  for (double e : errors) sq.add(e * e);
+  const double rmse = std::sqrt(sq.mean());
+  return {rmse, 0.5 * rmse * sq.standard_error() / sq.mean()};  // d sqrt(m) = dm / (2 sqrt(m))
 }
 
 }  // namespace prism::test

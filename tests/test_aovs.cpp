@@ -56,9 +56,12 @@ bool ball_shades(const Vec3& p) {
   return false;
 }
 
-TEST(Aovs, EveryLayerMeansWhatItSays) {
+// split: the path tracer's continuations per camera sample, whose light layers are their means.
+void expect_every_layer_means_what_it_says(int split) {
+  SCOPED_TRACE("split " + std::to_string(split));
   const Scene scene(aov_scene());
-  const PathIntegrator path(8, 3);
+  PathIntegrator path(8, 3);
+  path.set_split(split);
   const Film film = render_aovs(scene, aov_settings(), path);
   ExrImage image;
   add_render_layers(film, &scene.desc(), LayerOptions{ExrPixelType::Float, 6}, image);
@@ -119,6 +122,11 @@ TEST(Aovs, EveryLayerMeansWhatItSays) {
   EXPECT_GT(floor_pixels, 100);
   EXPECT_GT(ball_pixels, 5);
   EXPECT_GT(light_pixels, 10);
+}
+
+TEST(Aovs, EveryLayerMeansWhatItSays) {
+  expect_every_layer_means_what_it_says(1);
+  expect_every_layer_means_what_it_says(3);
 }
 
 TEST(Aovs, EmissionSeenDirectlyIsItsOwnLayer) {
@@ -204,7 +212,8 @@ TEST(Aovs, ACropRendersThePixelsOfTheWholeImage) {
 
 TEST(Aovs, SampleSlicesMergeIntoTheWholeRender) {
   const Scene scene(aov_scene());
-  const PathIntegrator path(8, 3);
+  PathIntegrator path(8, 3);
+  path.set_split(2);  // the slices' continuations are the whole render's too
   const Film whole = render_aovs(scene, aov_settings(), path);
   RenderSettings s = aov_settings();
   s.spp = 4;

@@ -19,7 +19,10 @@
 namespace prism {
 namespace {
 
-std::vector<float> render_cornell(int threads, int tile, uint64_t seed) {
+// The Cornell box rendered with `settings`' spp in passes of these many samples each (the renders
+// a time budget or a checkpointed render make), paths split into `split` continuations.
+std::vector<float> render_cornell(int threads, int tile, uint64_t seed, int split = 1,
+                                  const std::vector<int>& passes = {8}) {
   Diagnostics diag;
   SceneDesc desc = load_gltf(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf", diag);
   const CameraDesc cam = desc.cameras.at(0);
@@ -27,16 +30,20 @@ std::vector<float> render_cornell(int threads, int tile, uint64_t seed) {
   RenderSettings s;
   s.width = 40;
   s.height = 30;
-  s.spp = 8;
   s.threads = threads;
   s.tile_size = tile;
   s.seed = seed;
   Film film(s.width, s.height);
-  const PathIntegrator integrator(s.max_depth, s.rr_start_depth);
-  const RenderStats stats = render(scene, Camera(cam, s.width, s.height), integrator, s, film);
-  EXPECT_EQ(stats.samples, uint64_t(s.width) * s.height * s.spp);
-  EXPECT_EQ(stats.rays.camera, stats.samples);
-  EXPECT_EQ(stats.nonfinite_samples, 0u);
+  PathIntegrator integrator(s.max_depth, s.rr_start_depth);
+  integrator.set_split(split);
+  s.spp = 0;
+  for (const int pass : passes) {
+    s.spp += pass;  // the film's samples so far continue up to the new count
+    const RenderStats stats = render(scene, Camera(cam, s.width, s.height), integrator, s, film);
+    EXPECT_EQ(stats.samples, uint64_t(s.width) * s.height * pass);
+    EXPECT_EQ(stats.rays.camera, stats.samples) << "one camera ray per sample, split or not";
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+  }
   return film.resolve_rgba();
 }
 
@@ -46,6 +53,16 @@ TEST(Determinism, SameBitsForAnyThreadCountAndTileSize) {
   EXPECT_EQ(render_cornell(2, 5, 7), reference);
   EXPECT_EQ(render_cornell(3, 64, 7), reference);
   EXPECT_NE(render_cornell(2, 16, 8), reference);  // the seed matters
+}
+
+// Split paths draw each continuation from a sample index of its own (s * split + c): the bits do
+// not depend on threads, tiles or how the samples fall into passes, and splitting changes them.
+TEST(Determinism, SplitPathsGiveTheSameBitsOnAnyThreadCountAndInPasses) {
+  const std::vector<float> reference = render_cornell(1, 16, 7, 3);
+  EXPECT_EQ(render_cornell(2, 5, 7, 3), reference);
+  EXPECT_EQ(render_cornell(2, 16, 7, 3, {3, 1, 4}), reference);
+  EXPECT_NE(render_cornell(1, 16, 7, 2), reference);
+  EXPECT_NE(render_cornell(1, 16, 7, 1), reference);
 }
 
 }  // namespace

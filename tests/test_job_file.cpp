@@ -35,7 +35,7 @@ TEST(JobFile, BudgetsAndQualityKnobs) {
   Diagnostics diag;
   const JobFile job = parse(R"({"sampler": "independent", "time": "1m30s", "noise": 0.01, "min_spp": 8,
                                 "rr_start_depth": 5, "clamp_indirect": 10, "allocation": "error",
-                                "caster_share": 0.5, "texture_filter": "trilinear"})", diag);
+                                "caster_share": 0.5, "texture_filter": "trilinear", "split": 4})", diag);
   RenderSettings s;
   job.settings.apply_to(s);
   EXPECT_EQ(s.sampler, "independent");
@@ -47,6 +47,7 @@ TEST(JobFile, BudgetsAndQualityKnobs) {
   EXPECT_EQ(s.caster_share, 0.5f);
   EXPECT_EQ(s.allocation, "error");
   EXPECT_EQ(s.texture_filter, "trilinear");
+  EXPECT_EQ(s.split, 4);
   EXPECT_TRUE(diag.lines().empty());
 }
 
@@ -80,6 +81,7 @@ TEST(JobFile, TypeErrorsNameTheKeyAndType) {
       {R"({"time": "soon"})", "$.time", "positive duration"},
       {R"({"time": 0})", "$.time", "positive duration"},
       {R"({"noise": -0.1})", "$.noise", "between"},
+      {R"({"split": 0})", "$.split", "between 1 and 64"},
       {R"({"spheres": [{"center": [0, 0], "radius": 1}]})", "$.spheres[0].center", "3 numbers"},
       {R"({"spheres": [{"center": [0, 0, 0], "radius": -1}]})", "$.spheres[0].radius", "between 0"},
       {R"({"spheres": [{"center": [0, 0, 0]}]})", "$.spheres[0]", "radius"},

@@ -113,9 +113,11 @@ TEST(PacketQueries, AgreeWithSingleRaysLaneByLane) {
 }
 
 // Every lane of a packet of paths traced in lockstep must come out exactly as the same path traced
-// alone, AOVs included.
-void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
-  const PathIntegrator path(8, 3);
+// alone, AOVs included; split: the path tracer's continuations per camera sample.
+void expect_paths_in_lockstep_match_paths_alone(const Scene& scene, int split = 1) {
+  SCOPED_TRACE("split " + std::to_string(split));
+  PathIntegrator path(8, 3);
+  path.set_split(split);
   Pcg32 rng(31, 32);
   RayCounters packed_counters, alone_counters;
   constexpr int kMaxPaths = Integrator::kPathsInLockstep + 3;  // more than li_packet takes in lockstep
@@ -158,10 +160,14 @@ void expect_paths_in_lockstep_match_paths_alone(const Scene& scene) {
 
 // The same paths with part of their vertices' work in SIMD lanes (lane_vertices)
 // and without: the same bits, lane by lane, and the same rays counted. Returns how many shadow rays
-// were cast. caster_share: as the integrator's (0: no bounce is aimed at casters).
-uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200, float caster_share = 0) {
+// were cast. caster_share, split: as the integrator's (0: no bounce is aimed at casters; 1: no
+// splitting).
+uint64_t expect_lanes_match_scalar_paths(const Scene& scene, int rounds = 200, float caster_share = 0, int split = 1) {
+  SCOPED_TRACE("split " + std::to_string(split));
   PathIntegrator lanes(8, 3, -1, 0, caster_share), alone(8, 3, -1, 0, caster_share);
   alone.set_lanes(false);
+  lanes.set_split(split);
+  alone.set_split(split);
   Pcg32 rng(41, 42);
   RayCounters lane_counters, alone_counters;
   constexpr int kMaxPaths = Integrator::kPathsInLockstep + 3;
@@ -214,6 +220,7 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAlone) {
   const Scene scene(std::move(desc), &material_alpha);
   ASSERT_FALSE(scene.emitters().picks_ahead());
   expect_paths_in_lockstep_match_paths_alone(scene);
+  expect_paths_in_lockstep_match_paths_alone(scene, 3);
 }
 
 // The lanes give the scalar code's bits: Lambertian walls and blocks lit by a quad seen from far
@@ -719,6 +726,7 @@ TEST(Lanes, GiveTheScalarPathsBitsWhereCastersAimTheBounce) {
   const Scene lit(lanes_test_scene(), &material_alpha);
   ASSERT_FALSE(lit.casters().empty());
   EXPECT_GT(expect_lanes_match_scalar_paths(lit, 200, 0.25f), 2000u);
+  EXPECT_GT(expect_lanes_match_scalar_paths(lit, 100, 0.25f, 2), 2000u);
   SceneDesc open = open_to_the_sky(false);
   const int mirror = test::add_material(open, Rgb(0.9f));
   open.materials[size_t(mirror)].metallic = 1;
@@ -727,6 +735,7 @@ TEST(Lanes, GiveTheScalarPathsBitsWhereCastersAimTheBounce) {
   const Scene sky(std::move(open), &material_alpha);
   ASSERT_FALSE(sky.casters().empty());
   EXPECT_GT(expect_lanes_match_scalar_paths(sky, 200, 0.25f), 2000u);
+  EXPECT_GT(expect_lanes_match_scalar_paths(sky, 200, 0.25f, 2), 2000u);
 }
 
 // Turns the scene's opaque dielectrics into glTF's opaque metallic-roughness model with rough lobes
@@ -793,6 +802,7 @@ TEST(PacketQueries, PathsInLockstepMatchPathsAloneUnderALargeLightTree) {
   ASSERT_EQ(scene.emitters().size(), size_t(kSide) * kSide);
   ASSERT_TRUE(scene.emitters().picks_ahead()) << scene.emitters().tree().node_bytes() << " bytes of nodes";
   expect_paths_in_lockstep_match_paths_alone(scene);
+  expect_paths_in_lockstep_match_paths_alone(scene, 2);
 }
 
 }  // namespace

@@ -194,6 +194,35 @@ TEST(Samplers, ValuesDependOnlyOnPixelIndexAndDimension) {
   }
 }
 
+// A sampler moved to a position (PathIntegrator's continuations move theirs) draws what one started
+// at that sample index would after as many draws: from a position it stood at, from another index,
+// and after draws of another pixel's sample in between (Sobol's lanes share their seed caches).
+TEST(Samplers, MovingToAPositionDrawsWhatStartingThereWould) {
+  for (const std::string& name : sampler_names()) {
+    const std::vector<std::unique_ptr<Sampler>> lanes = make_lane_samplers(name, 4, 2);
+    auto fresh = make_sampler(name, 4);
+    for (const uint64_t index : {uint64_t(0), uint64_t(5), uint64_t(1) << 20}) {
+      Sampler& moved = *lanes[0];
+      moved.start_pixel_sample(7, 2, 3);
+      moved.next_2d();
+      const SamplerPosition at = moved.position();
+      EXPECT_EQ(at.index, 3u) << name;
+      lanes[1]->start_pixel_sample(8, 2, 9);  // another pixel, through the shared cache
+      for (int d = 0; d < 12; ++d) lanes[1]->next_1d();
+      for (int d = 0; d < 30; ++d) moved.next_1d();
+      moved.move_to({index, at.dimension});
+      fresh->start_pixel_sample(7, 2, index);
+      fresh->next_2d();
+      ASSERT_EQ(moved.position().index, index) << name;
+      ASSERT_EQ(moved.position().dimension, fresh->position().dimension) << name;
+      for (int vertex = 0; vertex < 14; ++vertex) {  // past Sobol's 64 cached dimensions
+        const std::array<float, 7> a = coordinates(moved.next_vertex()), b = coordinates(fresh->next_vertex());
+        for (int c = 0; c < 7; ++c) ASSERT_EQ(a[c], b[c]) << name << " index " << index << " vertex " << vertex;
+      }
+    }
+  }
+}
+
 // A path vertex's five draws taken at once (eight lanes wide on AVX2 CPUs, for Sobol) are the
 // values the same draws give one at a time, bit for bit, across pixels, sample indices (up to the
 // top bit) and dimensions (past the seed cache's 64), after a 1D draw or none. Sobol's light point
@@ -335,37 +364,12 @@ TEST(Samplers, DimensionsAreUniformAndIndependentAcrossPixels) {
   }
 }
 
-// Renders the furnace; returns each pixel's error against the exact radiance (green channel).
-std::vector<double> furnace_errors(const std::string& sampler, int spp, int size, uint64_t seed) {
-  const int depth = 4;
-  const Scene scene(test::furnace_box(1.0, 0.5));
-  RenderSettings settings;
-  settings.width = settings.height = size;
-  settings.spp = spp;
-  settings.max_depth = depth;
-  settings.rr_start_depth = 1 << 20;
-  settings.seed = seed;
-  settings.sampler = sampler;
-  Film film(size, size);
-  const PathIntegrator integrator(settings.max_depth, settings.rr_start_depth);
-  render(scene, Camera(test::furnace_camera(), size, size), integrator, settings, film);
-  const double truth = test::furnace_radiance(1.0, 0.5, depth);
-  std::vector<double> errors;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      float rgba[4];
-      film.mean(x, y, rgba);
-      errors.push_back(rgba[1] - truth);
-    }
-  return errors;
-}
-
 // A flat field shows no structure: the errors of neighbouring pixels are uncorrelated (the sample
 // correlation of n independent pairs has standard deviation 1/sqrt(n)).
 TEST(Samplers, NoCorrelationBetweenPixelsInAFlatField) {
   const int size = 64;
   for (const std::string& name : sampler_names()) {
-    const std::vector<double> e = furnace_errors(name, 4, size, 5);
+    const std::vector<double> e = test::furnace_errors(name, 4, size, 5);
     for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{2, 0}, std::pair{0, 4}}) {
       double sab = 0, saa = 0, sbb = 0, sa = 0, sb = 0, n = 0;
       for (int y = 0; y + dy < size; ++y)
@@ -380,14 +384,6 @@ TEST(Samplers, NoCorrelationBetweenPixelsInAFlatField) {
   }
 }
 
-// Root mean square error over pixels, and its standard error (from the spread of squared errors).
-std::pair<double, double> rmse_with_error(const std::vector<double>& errors) {
-  test::RunningStats sq;
-  for (double e : errors) sq.add(e * e);
-  const double rmse = std::sqrt(sq.mean());
-  return {rmse, 0.5 * rmse * sq.standard_error() / sq.mean()};  // d sqrt(m) = dm / (2 sqrt(m))
-}
-
 // Monte Carlo error falls as 1/sqrt(N): four times the samples halve the RMSE. Sobol must do at
 // least as well (its low dimensions converge faster). The ratio's tolerance comes from the
 // measured spread of the squared errors (the two renders share samples, which only tightens it).
@@ -395,8 +391,8 @@ TEST(Samplers, FourTimesTheSamplesHalveTheFurnaceError) {
   const int size = 40;
   for (const std::string& name : sampler_names()) {
     for (int n : {4, 16}) {
-      const auto [r1, s1] = rmse_with_error(furnace_errors(name, n, size, 77));
-      const auto [r4, s4] = rmse_with_error(furnace_errors(name, 4 * n, size, 77));
+      const auto [r1, s1] = test::rmse_with_error(test::furnace_errors(name, n, size, 77));
+      const auto [r4, s4] = test::rmse_with_error(test::furnace_errors(name, 4 * n, size, 77));
       const double ratio = r4 / r1;
       const double sigma = ratio * std::hypot(s1 / r1, s4 / r4);
       if (name == "independent") EXPECT_NEAR(ratio, 0.5, test::kSigmas * sigma) << name << " at " << n << " spp";

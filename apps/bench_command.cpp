@@ -68,6 +68,7 @@ auto with_bench_scene(const BenchOptions& o, const std::string& path, Use use) {
   ro.settings.max_depth = o.max_depth;
   ro.settings.threads = o.threads;
   ro.settings.sampler = o.sampler;
+  ro.settings.split = o.split;
   ro.quiet = true;
   PreparedRender p = prepare_render(ro);
   std::optional<tbb::global_control> limit;
@@ -114,12 +115,13 @@ BenchRun bench_scene(const BenchOptions& o, const std::string& path, const std::
 }
 
 // Renders the converged image a scene's error is measured against, at --reference-spp with the
-// Sobol sampler (the same reference for every --sampler) and another seed than the timed renders,
-// so their errors are independent.
+// Sobol sampler and paths unsplit (the same reference for every --sampler and --split) and another
+// seed than the timed renders, so their errors are independent.
 void render_reference(const BenchOptions& o, const std::string& path, const std::string& reference) {
   with_bench_scene(o, path, [&](const PreparedRender& p) {
     RenderSettings rs = reference_settings(p.settings, o.reference_spp);
     rs.sampler = "sobol";
+    rs.split = 1;
     const auto [film, stats] = render_film(p, rs);
     write_reference(reference, p, rs, stats, film);
   });
@@ -218,15 +220,16 @@ int bench(const BenchOptions& o) {
     }
   }
   const bool errors = o.references.has_value();
-  fmt::print("prism {} bench: {} spp, {}, max depth {}, {} sampler, {} threads on {}{}\n", PRISM_VERSION, o.spp,
-             o.resolution, o.max_depth, o.sampler, threads, processor_name(),
+  fmt::print("prism {} bench: {} spp{}, {}, max depth {}, {} sampler, {} threads on {}{}\n", PRISM_VERSION, o.spp,
+             o.split > 1 ? fmt::format(" (paths split in {} past the first vertex)", o.split) : "", o.resolution,
+             o.max_depth, o.sampler, threads, processor_name(),
              o.repeat > 1 ? fmt::format("; medians of {} runs, scenes in turn", o.repeat) : "");
   fmt::print("{:<22}{:>9}{:>8}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{}{}\n", "scene", "tris", "BVH s", "render s", "Mpaths/s",
              "Mrays/s", "camera", "extend", "shadow", "peak MB",
              errors ? fmt::format("{:>12}{:>12}", "relMSE", "efficiency") : "",
              o.repeat > 1 ? "  render s min..max" : "");
   std::fflush(stdout);
-  const BenchSettingsText settings{o.spp, o.resolution, o.sampler, o.max_depth, threads};
+  const BenchSettingsText settings{o.spp, o.resolution, o.sampler, o.max_depth, threads, o.split};
   std::vector<std::vector<BenchRun>> runs(scenes.size());
   std::string csv = bench_csv_header();
   auto print_line = [&](size_t i) {
@@ -281,6 +284,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
   cmd->add_option("--max-depth", o.max_depth, "Maximum bounces (default 8)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", o.threads, "Worker threads; 0 = all cores (default)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--sampler", o.sampler, "Sampler (default sobol)");
+  cmd->add_option("--split", o.split, "Continuations per camera sample past its first vertex, as render --split (default 1)")
+      ->check(CLI::Range(1, kMaxSplit));
   cmd->add_option("--repeat", o.repeat,
                   "Render each scene this many times, the scenes taking turns, and print the median of each figure "
                   "and the range of render seconds (default 1)")

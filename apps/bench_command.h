@@ -18,6 +18,7 @@ struct BenchOptions {
   int max_depth = 8;
   int threads = 0;
   std::string sampler = "sobol";
+  int split = 1;    // continuations per camera sample (render --split)
   int repeat = 1;   // renders of each scene; the line gives their medians
   std::string csv;  // every run's figures, when set
   std::optional<std::string> references;  // folder of converged images: errors are measured when set

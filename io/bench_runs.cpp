@@ -91,15 +91,15 @@ BenchSummary summarize(const std::vector<BenchRun>& runs) {
 }
 
 std::string bench_csv_header() {
-  return "scene,run,spp,resolution,max_depth,sampler,threads,triangles,bvh_s,render_s,mpaths_s,mrays_s,"
+  return "scene,run,spp,resolution,max_depth,sampler,threads,split,triangles,bvh_s,render_s,mpaths_s,mrays_s,"
          "camera_mrays_s,extension_mrays_s,shadow_mrays_s,peak_mb,relmse,efficiency\n";
 }
 
 std::string bench_csv_row(const std::string& scene, int repetition, const BenchRun& r, const BenchSettingsText& s) {
   const std::string error = r.has_error() ? fmt::format("{:.8g},{:.8g}", r.rel_mse, r.efficiency()) : ",";
-  return fmt::format("{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{}\n",
+  return fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{}\n",
                      csv_field(scene), repetition, s.spp, csv_field(s.resolution), s.max_depth, csv_field(s.sampler),
-                     s.threads, r.triangles, r.bvh_seconds, r.render_seconds, r.mpaths_per_second(),
+                     s.threads, s.split, r.triangles, r.bvh_seconds, r.render_seconds, r.mpaths_per_second(),
                      r.mrays_per_second(), r.camera_mrays_per_second(), r.extension_mrays_per_second(),
                      r.shadow_mrays_per_second(), r.peak_mb, error);
 }

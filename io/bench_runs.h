@@ -63,6 +63,7 @@ struct BenchSettingsText {
   int spp = 0;
   std::string resolution, sampler;
   int max_depth = 0, threads = 0;
+  int split = 1;  // continuations per camera sample (RenderSettings::split)
 };
 std::string bench_csv_row(const std::string& scene, int repetition, const BenchRun& run, const BenchSettingsText& s);
 

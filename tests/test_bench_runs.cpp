@@ -100,13 +100,13 @@ TEST(BenchRuns, EfficiencyIsOneOverErrorTimesSeconds) {
 }
 
 TEST(BenchRuns, CsvRowsQuoteWhatNeedsIt) {
-  const BenchSettingsText settings{16, "512x512", "sobol", 8, 2};
+  const BenchSettingsText settings{16, "512x512", "sobol", 8, 2, 3};
   const std::string header = bench_csv_header();
   const std::string row = bench_csv_row("a,\"b\".gltf", 2, run_of(2.0, 2'000'000), settings);
   BenchRun measured = run_of(2.0, 2'000'000);
   measured.rel_mse = 0.25;
   const std::string measured_row = bench_csv_row("box.gltf", 1, measured, settings);
-  EXPECT_EQ(row.rfind("\"a,\"\"b\"\".gltf\",2,16,512x512,8,sobol,2,32,", 0), 0u) << row;
+  EXPECT_EQ(row.rfind("\"a,\"\"b\"\".gltf\",2,16,512x512,8,sobol,2,3,32,", 0), 0u) << row;
   // As many fields as the header names, once the quoted one counts as one.
   auto fields = [](const std::string& line) {
     int n = 1;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,73 @@ namespace prism {
 namespace {
 
 constexpr int kNoRoulette = 1 << 20;
+
+// A sampler that notes where it stands at each vertex's draws.
+class RecordingSampler final : public Sampler {
+ public:
+  explicit RecordingSampler(uint64_t seed) : inner_(make_sampler("sobol", seed)) {}
+  void start_pixel_sample(int x, int y, uint64_t index) override { inner_->start_pixel_sample(x, y, index); }
+  float next_1d() override { return inner_->next_1d(); }
+  Vec2 next_2d() override { return inner_->next_2d(); }
+  SamplerPosition position() const override { return inner_->position(); }
+  void move_to(const SamplerPosition& to) override { inner_->move_to(to); }
+  void draw_vertex(VertexSamples& v) override {
+    vertices.push_back(inner_->position());
+    inner_->draw_vertex(v);
+  }
+  std::vector<SamplerPosition> vertices;
+
+ private:
+  std::unique_ptr<Sampler> inner_;
+};
+
+// Camera sample s of a pixel draws its first vertex's light sample at (s, the dimension after the
+// camera's), and continuation c its first vertex's draws at (s * K + c, that dimension), then its
+// next vertices' at the following dimensions of that index: the mapping that makes the
+// continuations a longer render's samples.
+TEST(PathSplitting, ContinuationsDrawSampleIndicesOfTheirOwn) {
+  Diagnostics diag;
+  SceneDesc desc = load_gltf(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf", diag);
+  const Camera camera(desc.cameras.at(0), 16, 16);
+  const Scene scene(std::move(desc));
+  const int split = 3;
+  PathIntegrator integrator(8, kNoRoulette);
+  integrator.set_split(split);
+  constexpr int kLanes = 5;
+  std::vector<std::unique_ptr<RecordingSampler>> lanes;
+  Sampler* samplers[kLanes];
+  Ray rays[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    lanes.push_back(std::make_unique<RecordingSampler>(3));
+    samplers[k] = lanes.back().get();
+    samplers[k]->start_pixel_sample(8, 8, uint64_t(7 + k));
+    const Vec2 jitter = samplers[k]->next_2d();
+    rays[k] = camera.generate_ray(8 + jitter.x, 8 + jitter.y);  // the back wall, in the middle
+  }
+  RayCounters counters;
+  RadianceSample out[kLanes];
+  integrator.li_packet(scene, rays, samplers, kLanes, counters, nullptr, out);
+  EXPECT_EQ(counters.camera, uint64_t(kLanes));
+  int bounces = 0;
+  for (int k = 0; k < kLanes; ++k) {
+    const std::vector<SamplerPosition>& v = lanes[size_t(k)]->vertices;
+    const uint64_t s = uint64_t(7 + k);
+    const uint32_t first = 1;  // after the jitter's one 2D draw
+    ASSERT_FALSE(v.empty());
+    EXPECT_EQ(v[0].index, s);
+    EXPECT_EQ(v[0].dimension, first);
+    size_t i = 1;
+    for (int c = 0; c < split; ++c) {
+      uint32_t vertex = 0;
+      for (; i < v.size() && v[i].index == s * split + uint64_t(c); ++i, ++vertex)
+        EXPECT_EQ(v[i].dimension, first + 5 * vertex) << "lane " << k << ", continuation " << c;
+      EXPECT_GE(vertex, 1u) << "lane " << k << ", continuation " << c;
+      bounces += int(vertex);
+    }
+    EXPECT_EQ(i, v.size()) << "lane " << k << ": draws at another index";
+  }
+  EXPECT_GT(bounces, kLanes * split * 2);  // paths went on past their first vertex
+}
 
 // The furnace's closed form with every sampler, two and three continuations (the mean of three is
 // no power of two), with and without Russian roulette: the first vertex's light sample, taken by

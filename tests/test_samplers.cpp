@@ -81,38 +81,6 @@ TEST(Sobol, OwenScrambleKeepsDyadicIntervals) {
   EXPECT_EQ(seen.size(), 4096u);
 }
 
-// The first 2^m samples of a pixel put exactly one point in every dyadic box of area 2^-m in every
-// 2D draw (a (0,m,2)-net: every shape 2^-a x 2^-(m-a)), and one in every 1/2^m interval in 1D draws.
-TEST(Sobol, EveryDrawOfAPixelIsStratified) {
-  SobolSampler sampler(42);
-  for (int m : {2, 4, 6, 8}) {
-    const uint32_t n = 1u << m;
-    for (int pixel = 0; pixel < 6; ++pixel) {
-      const int x = pixel * 37, y = 1000 - pixel * 11;
-      const int draws = 12;  // alternating 2D and 1D draws, as a path makes them
-      std::vector<std::vector<Vec2>> points(draws, std::vector<Vec2>(n));
-      for (uint32_t s = 0; s < n; ++s) {
-        sampler.start_pixel_sample(x, y, s);
-        for (int d = 0; d < draws; ++d) points[d][s] = d % 2 == 0 ? sampler.next_2d() : Vec2{sampler.next_1d(), 0.5f};
-      }
-      for (int d = 0; d < draws; ++d) {
-        const bool two_d = d % 2 == 0;
-        for (int a = 0; a <= (two_d ? m : 0); ++a) {
-          const int cols = two_d ? 1 << a : int(n), rows = two_d ? 1 << (m - a) : 1;
-          std::vector<int> boxes(n, 0);
-          for (const Vec2& p : points[d]) {
-            ASSERT_GE(p.x, 0.0f);
-            ASSERT_LT(p.x, 1.0f);
-            ++boxes[size_t(int(p.y * float(rows)) * cols + int(p.x * float(cols)))];
-          }
-          for (int count : boxes)
-            ASSERT_EQ(count, 1) << "m " << m << ", pixel " << pixel << ", draw " << d << ", boxes " << cols << "x" << rows;
-        }
-      }
-    }
-  }
-}
-
 // Whether the first n points put exactly n / 2^(m - t) in every dyadic box of volume 2^(t - m)
 // (a (t,m,s)-net: every split of m - t halvings among the s axes), for points in [0, 1)^s.
 template <size_t S>
@@ -134,6 +102,37 @@ bool is_net(const std::vector<std::array<float, S>>& points, int m, int t) {
     size_t a = 0;  // the next split of the first S - 1 axes, odometer order
     while (a + 1 < S && ++split[a] > m - t) split[a++] = 0;
     if (a + 1 == S) return true;
+  }
+}
+
+// The first 2^m samples of a pixel put exactly one point in every dyadic box of area 2^-m in every
+// 2D draw (a (0,m,2)-net: every shape 2^-a x 2^-(m-a)), and one in every 1/2^m interval in 1D draws.
+TEST(Sobol, EveryDrawOfAPixelIsStratified) {
+  SobolSampler sampler(42);
+  for (int m : {2, 4, 6, 8}) {
+    const uint32_t n = 1u << m;
+    for (int pixel = 0; pixel < 6; ++pixel) {
+      const int x = pixel * 37, y = 1000 - pixel * 11;
+      const int pairs = 6;  // alternating 2D and 1D draws, as a path makes them
+      std::vector<std::array<float, 2>> planes[pairs];
+      std::vector<std::array<float, 1>> lines[pairs];
+      for (uint32_t s = 0; s < n; ++s) {
+        sampler.start_pixel_sample(x, y, s);
+        for (int d = 0; d < pairs; ++d) {
+          const Vec2 p = sampler.next_2d();
+          planes[d].push_back({p.x, p.y});
+          lines[d].push_back({sampler.next_1d()});
+          for (const float v : {p.x, p.y, lines[d].back()[0]}) {
+            ASSERT_GE(v, 0.0f);
+            ASSERT_LT(v, 1.0f);
+          }
+        }
+      }
+      for (int d = 0; d < pairs; ++d) {
+        EXPECT_TRUE(is_net(planes[d], m, 0)) << "m " << m << ", pixel " << pixel << ", 2D draw " << d;
+        EXPECT_TRUE(is_net(lines[d], m, 0)) << "m " << m << ", pixel " << pixel << ", 1D draw " << d;
+      }
+    }
   }
 }
 

@@ -51,8 +51,12 @@ class Bsdf {
   // metal, no transmission, and a specular layer that reflects nothing (no index step, or no
   // weight). SIMD kernels make that lobe's frame themselves (integrators/lane_lambertian_lobe.h).
   static bool lambertian_only(const SurfaceParams& params, float eta) {
-    const float m = std::clamp(params.metallic, 0.0f, 1.0f), t = std::clamp(params.transmission, 0.0f, 1.0f);
-    return m == 0 && t == 0 && (eta == 1.0f || !(params.specular > 0));
+    return lambertian_only(params.metallic, params.transmission, params.specular, eta);
+  }
+  // The same, from the three parameters it reads.
+  static bool lambertian_only(float metallic, float transmission, float specular, float eta) {
+    const float m = std::clamp(metallic, 0.0f, 1.0f), t = std::clamp(transmission, 0.0f, 1.0f);
+    return m == 0 && t == 0 && (eta == 1.0f || !(specular > 0));
   }
   // Whether the mixture at a point with these parameters and eta is glTF's opaque metallic-roughness
   // model with rough lobes: GGX metal (weight metallic) and glTF's default dielectric, a GGX layer

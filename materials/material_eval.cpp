@@ -43,16 +43,6 @@ SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2
   return p;
 }
 
-std::optional<bool> lambertian_everywhere(const MaterialDesc& m, float eta) {
-  if (m.metallic_roughness_texture.present() || m.transmission_texture.present() || m.specular_texture.present())
-    return std::nullopt;
-  SurfaceParams factors;  // what surface_params gives, as far as lambertian_only reads it
-  factors.metallic = m.metallic;
-  factors.transmission = m.transmission;
-  factors.specular = m.specular;
-  return Bsdf::lambertian_only(factors, eta);
-}
-
 Rgb emitted_radiance(const SceneDesc& scene, int material, Vec2 uv, const Vec3& ng, const Vec3& w) {
   const MaterialDesc& m = scene.material(material);
   if (!m.is_emissive()) return {};

@@ -24,7 +24,12 @@ SurfaceParams surface_params(const SceneDesc& scene, const MaterialDesc& m, Vec2
 
 // Bsdf::lambertian_only at every point of `m`, for the interface's eta, where no texture scales
 // the factors it depends on (metallic, transmission, specular); nullopt where one does.
-std::optional<bool> lambertian_everywhere(const MaterialDesc& m, float eta);
+// Inline: asked at every vertex the lanes may take (out of line it cost 1.2% of the box).
+inline std::optional<bool> lambertian_everywhere(const MaterialDesc& m, float eta) {
+  if (m.metallic_roughness_texture.present() || m.transmission_texture.present() || m.specular_texture.present())
+    return std::nullopt;
+  return Bsdf::lambertian_only(m.metallic, m.transmission, m.specular, eta);
+}
 
 // Radiance emitted by material `material` at uv toward w, for a surface whose front-face
 // normal is ng: emissive factor x texture x strength, from the front face only unless the

@@ -49,8 +49,9 @@ class RecordingSampler final : public Sampler {
 TEST(PathSplitting, ContinuationsDrawSampleIndicesOfTheirOwn) {
   Diagnostics diag;
   SceneDesc desc = load_gltf(PRISM_SOURCE_DIR "/scenes/cornell-box/cornell-box.gltf", diag);
-  const Camera camera(desc.cameras.at(0), 16, 16);
+  const CameraDesc cam = desc.cameras.at(0);
   const Scene scene(std::move(desc));
+  const Camera camera = Camera(cam, 16, 16).relative_to(scene.origin());  // rays in the scene's coordinates
   const int split = 3;
   PathIntegrator integrator(8, kNoRoulette);
   integrator.set_split(split);

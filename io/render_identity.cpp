@@ -22,24 +22,27 @@ void check_same_render(const ExrImage& image, const std::string& path, const Exr
                      fmt::format("{}x{} differs from {}'s {}x{}: not a part of the same render", image.display.width(),
                                  image.display.height(), reference_name, reference.display.width(),
                                  reference.display.height()));
-  static const char* keys[] = {"prism/aovs",          "prism/seed",         "prism/sampler",
-                               "prism/integrator",    "prism/maxDepth",     "prism/maxDiffuseDepth",
-                               "prism/rrStartDepth",  "prism/clampIndirect", "prism/scene",
-                               "prism/camera",        "prism/environment", "prism/lightSampler",
-                               "prism/allocation",    "prism/casterShare",   "prism/textureFilter",
-                               "prism/split"};
-  // Attributes written only away from their defaults (render_attributes) read as those defaults.
-  auto text = [](const ExrImage& file, const char* key) {
-    std::string t = attribute_text(file, key);
-    if (t.empty() && std::string(key) == "prism/split") return std::string("1");
-    if (t.empty() && std::string(key) == "prism/allocation") return std::string("uniform");
-    return t;
+  // Each attribute with the text it reads as when absent: render_attributes writes prism/allocation
+  // and prism/split only away from their defaults.
+  struct Key {
+    const char* name;
+    const char* absent;
   };
-  for (const char* key : keys) {
-    const std::string mine = text(image, key), theirs = text(reference, key);
+  static const Key keys[] = {{"prism/aovs", ""},          {"prism/seed", ""},           {"prism/sampler", ""},
+                             {"prism/integrator", ""},    {"prism/maxDepth", ""},       {"prism/maxDiffuseDepth", ""},
+                             {"prism/rrStartDepth", ""},  {"prism/clampIndirect", ""},  {"prism/scene", ""},
+                             {"prism/camera", ""},        {"prism/environment", ""},    {"prism/lightSampler", ""},
+                             {"prism/allocation", "uniform"}, {"prism/casterShare", ""}, {"prism/textureFilter", ""},
+                             {"prism/split", "1"}};
+  for (const Key& key : keys) {
+    const auto text = [&key](const ExrImage& file) {
+      const std::string t = attribute_text(file, key.name);
+      return t.empty() ? std::string(key.absent) : t;
+    };
+    const std::string mine = text(image), theirs = text(reference);
     if (mine != theirs)
-      throw InputError(path, key, fmt::format("'{}' differs from {}'s '{}': not a part of the same render", mine,
-                                              reference_name, theirs));
+      throw InputError(path, key.name, fmt::format("'{}' differs from {}'s '{}': not a part of the same render",
+                                                   mine, reference_name, theirs));
   }
 }
 

@@ -40,6 +40,28 @@ std::vector<T> parsed_list(const std::string& text, const std::string& option, P
   return out;
 }
 
+// One setting compared: the render's settings with some knobs changed, and its series' name.
+struct Variant {
+  RenderSettings settings;
+  std::string name;
+};
+
+// Each of `variants` once for each of `values` of the knob, named "<name>/<prefix><value>" when
+// `named`.
+template <typename T>
+void cross(std::vector<Variant>& variants, const std::vector<T>& values, T RenderSettings::*knob,
+           const std::string& prefix, bool named) {
+  std::vector<Variant> out;
+  for (const Variant& v : variants)
+    for (const T& value : values) {
+      Variant w = v;
+      w.settings.*knob = value;
+      if (named) w.name += (w.name.empty() ? "" : "/") + prefix + fmt::format("{}", value);
+      out.push_back(std::move(w));
+    }
+  variants = std::move(out);
+}
+
 // A comma-separated list of positive counts, smallest first; `example` shows the form in errors.
 std::vector<int> count_list(const std::string& text, const std::string& option, const std::string& example) {
   return parsed_list<int>(text, option, [&](const std::string& item) {
@@ -136,6 +158,14 @@ int converge(const ConvergeOptions& o) {
   if (rr_starts.empty()) rr_starts.push_back(p.settings.rr_start_depth);
   if (splits.empty()) splits.push_back(p.settings.split);
   build_scene(p, ro.quiet);
+  // Every combination of the compared knobs, outermost first; integrator and sampler always name
+  // a series, the other knobs only when more than one value of theirs is compared.
+  std::vector<Variant> variants{{p.settings, ""}};
+  cross(variants, integrators, &RenderSettings::integrator, "", true);
+  cross(variants, samplers, &RenderSettings::sampler, "", true);
+  cross(variants, rr_starts, &RenderSettings::rr_start_depth, "rr", rr_starts.size() > 1);
+  cross(variants, splits, &RenderSettings::split, "split", splits.size() > 1);
+  cross(variants, allocations, &RenderSettings::allocation, "", allocations.size() > 1);
   const Camera camera(p.camera, p.settings.width, p.settings.height);
   if (reference && (reference->width != p.settings.width || reference->height != p.settings.height))
     throw UsageError(fmt::format("--reference {} is {}x{} but the render is {}x{}", *o.reference, reference->width,
@@ -158,84 +188,72 @@ int converge(const ConvergeOptions& o) {
                               p.settings.height),
                   "render time (s)", "relMSE", {}};
   if (!ro.quiet) fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
-  for (const std::string& integrator_name : integrators)
-    for (const std::string& sampler : samplers)
-      for (const int rr_start : rr_starts)
-      for (const int split : splits)
-      for (const std::string& allocation : allocations) {
-        RenderSettings s = p.settings;
-        s.integrator = integrator_name;
-        s.sampler = sampler;
-        s.rr_start_depth = rr_start;
-        s.split = split;
-        s.allocation = allocation;
-        std::unique_ptr<Integrator> integrator;
-        try {
-          integrator = make_integrator(s);
-        } catch (const std::invalid_argument& e) {
-          throw UsageError(e.what());
+  for (const Variant& variant : variants) {
+    RenderSettings s = variant.settings;
+    std::unique_ptr<Integrator> integrator;
+    try {
+      integrator = make_integrator(s);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    {
+      // Warm up (thread pool, sampler validation) on one pixel so the first level's time is the render's.
+      RenderSettings warm = s;
+      warm.spp = 1;
+      Film pixel(1, 1);
+      try {
+        render(*p.scene, camera, *integrator, warm, pixel);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+    }
+    const std::string& base = variant.name;
+    for (const Budget kind : kinds) {
+      PlotSeries series{base + (kinds.size() == 1 ? "" : budget_suffix(kind)), {}};
+      auto measured = [&](double spp, double seconds, const Film& film) {
+        Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
+        const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
+        if (!ro.quiet)
+          fmt::print("{:<24}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds,
+                     row.error.rmse, row.error.all.rel_mse, efficiency);
+        series.points.emplace_back(seconds, row.error.all.rel_mse);
+        rows.push_back(row);
+      };
+      // A render of its own under `budgeted`'s time budget or noise target: what a user who
+      // asks `prism render` for that budget gets.
+      auto render_budgeted = [&](const RenderSettings& budgeted) {
+        Film film(s.width, s.height);
+        const RenderStats stats = render(*p.scene, camera, *integrator, budgeted, film);
+        measured(stats.spp_mean, stats.seconds, film);
+      };
+      if (kind == Budget::Spp) {
+        Film film(s.width, s.height);
+        double seconds = 0;
+        // Sample counts are prefixes of one sequence: each level continues the previous film.
+        for (int spp : spps) {
+          s.spp = spp;
+          seconds += render(*p.scene, camera, *integrator, s, film).seconds;
+          measured(spp, seconds, film);
         }
-        {
-          // Warm up (thread pool, sampler validation) on one pixel so the first level's time is the render's.
-          RenderSettings warm = s;
-          warm.spp = 1;
-          Film pixel(1, 1);
-          try {
-            render(*p.scene, camera, *integrator, warm, pixel);
-          } catch (const std::invalid_argument& e) {
-            throw UsageError(e.what());
-          }
+      } else if (kind == Budget::Time) {
+        for (double budget : budgets) {
+          RenderSettings timed = s;
+          timed.time_budget = budget;
+          timed.spp = kTimedSppCeiling;
+          render_budgeted(timed);
         }
-        const std::string base =
-            integrator_name + "/" + sampler + (rr_starts.size() > 1 ? fmt::format("/rr{}", rr_start) : "") +
-            (splits.size() > 1 ? fmt::format("/split{}", split) : "") +
-            (allocations.size() > 1 ? "/" + allocation : "");
-        for (const Budget kind : kinds) {
-          PlotSeries series{base + (kinds.size() == 1 ? "" : budget_suffix(kind)), {}};
-          auto measured = [&](double spp, double seconds, const Film& film) {
-            Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
-            const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
-            if (!ro.quiet)
-              fmt::print("{:<24}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds,
-                         row.error.rmse, row.error.all.rel_mse, efficiency);
-            series.points.emplace_back(seconds, row.error.all.rel_mse);
-            rows.push_back(row);
-          };
-          // A render of its own under `budgeted`'s time budget or noise target: what a user who
-          // asks `prism render` for that budget gets.
-          auto render_budgeted = [&](const RenderSettings& budgeted) {
-            Film film(s.width, s.height);
-            const RenderStats stats = render(*p.scene, camera, *integrator, budgeted, film);
-            measured(stats.spp_mean, stats.seconds, film);
-          };
-          if (kind == Budget::Spp) {
-            Film film(s.width, s.height);
-            double seconds = 0;
-            // Sample counts are prefixes of one sequence: each level continues the previous film.
-            for (int spp : spps) {
-              s.spp = spp;
-              seconds += render(*p.scene, camera, *integrator, s, film).seconds;
-              measured(spp, seconds, film);
-            }
-          } else if (kind == Budget::Time) {
-            for (double budget : budgets) {
-              RenderSettings timed = s;
-              timed.time_budget = budget;
-              timed.spp = kTimedSppCeiling;
-              render_budgeted(timed);
-            }
-          } else {
-            if (allocation != "uniform") continue;  // a noise target shares samples by its own rule
-            for (double target : targets) {
-              RenderSettings adaptive = s;
-              adaptive.noise_target = target;
-              adaptive.spp = kNoiseSppCeiling;
-              render_budgeted(adaptive);
-            }
-          }
-          plot.series.push_back(std::move(series));
+      } else {
+        if (s.allocation != kUniformAllocation) continue;  // a noise target shares samples by its own rule
+        for (double target : targets) {
+          RenderSettings adaptive = s;
+          adaptive.noise_target = target;
+          adaptive.spp = kNoiseSppCeiling;
+          render_budgeted(adaptive);
         }
       }
+      plot.series.push_back(std::move(series));
+    }
+  }
 
   std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
   for (const Row& r : rows)

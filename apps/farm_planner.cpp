@@ -98,7 +98,7 @@ FarmPlan make_farm_plan(const FarmPlanOptions& o) {
     if (s.crop != PixelWindow{} || parsed[i].settings.first_sample)
       throw UsageError(fmt::format("farm plan: {} {} is a slice already (\"crop\" or \"sample_range\"): plan the whole job",
                                    o.job, where));
-    if (s.time_budget > 0 || s.noise_target > 0 || s.allocation != "uniform")
+    if (s.counts_follow_the_render())
       throw UsageError(fmt::format(
           "farm plan --by {}: {} {} has a {}, whose samples depend on the machine and on the whole image; "
           "split it by frames, or give it a fixed \"spp\" shared uniformly",

@@ -179,7 +179,7 @@ int render(const RenderOptions& o, const BatchContext& batch) {
                double(stats.rays.total()) / secs / 1e6, si(double(stats.rays.camera)), si(double(stats.rays.extension)),
                si(double(stats.rays.shadow)), scene.build_seconds(), stats.nonfinite_samples, output,
                preview ? " + " + *preview : "");
-    if (settings.time_budget > 0 || settings.noise_target > 0 || settings.allocation != "uniform")
+    if (settings.counts_follow_the_render())
       fmt::print("{} passes, estimated relative error {:.4f} (RMS over pixels){}\n", stats.passes, stats.relative_error,
                  settings.noise_target > 0
                      ? fmt::format(", {:.1f}% of pixels under the noise target {}", 100 * stats.converged_fraction,

@@ -60,7 +60,7 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
   }
   cli.apply_to(s);
   const bool sliced = !o.sample_range.empty() || (job && job->settings.first_sample);
-  if (sliced && (s.time_budget > 0 || s.noise_target > 0 || s.allocation != "uniform"))
+  if (sliced && s.counts_follow_the_render())
     throw UsageError(
         "a sample range renders a fixed slice of samples: it cannot be combined with --time, --noise or --allocation "
         "error");

@@ -13,6 +13,8 @@ namespace prism {
 // The most continuations a path may split into at its first vertex (RenderSettings::split): past a
 // few the camera sample's own noise (its pixel filter, the first vertex) dominates anyway.
 inline constexpr int kMaxSplit = 64;
+// RenderSettings::allocation's default: every pixel gets the same count.
+inline constexpr const char* kUniformAllocation = "uniform";
 
 struct RenderSettings {
   int width = 0, height = 0;   // 0 = from the camera's aspect ratio (see default_resolution)
@@ -40,7 +42,7 @@ struct RenderSettings {
   // How a pass's samples are shared among pixels: "uniform" (the same count each) or "error" (in
   // proportion to each pixel's estimated share of the relMSE, core/error_allocation.h; spp is then
   // the mean).
-  std::string allocation = "uniform";
+  std::string allocation = kUniformAllocation;
   uint64_t seed = 0;
   int tile_size = 16;
   int threads = 0;             // 0 = all hardware threads
@@ -54,6 +56,12 @@ struct RenderSettings {
   // split by samples, see prism merge); each pixel's random numbers depend on the index alone.
   uint64_t first_sample = 0;
   AovSet aovs;
+
+  // Whether pixels' sample counts follow the render's own progress (a time budget, a noise target
+  // or samples shared by error), so that no fixed slice of sample indices stands for them.
+  bool counts_follow_the_render() const {
+    return time_budget > 0 || noise_target > 0 || allocation != kUniformAllocation;
+  }
 };
 
 // Settings given by a job file or on the command line; unset fields leave the settings alone.

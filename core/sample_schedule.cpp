@@ -18,7 +18,7 @@ Rgb mean_colour(const Film& film, int x, int y) {
 
 }  // namespace
 
-std::vector<std::string> allocation_names() { return {"uniform", "error"}; }
+std::vector<std::string> allocation_names() { return {kUniformAllocation, "error"}; }
 
 SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int height)
     : max_spp_(uint32_t(std::max(1, settings.spp))),

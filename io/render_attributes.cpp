@@ -39,8 +39,9 @@ std::vector<ExrAttribute> render_attributes(const RenderSettings& s, const Rende
   // Written only when paths split, so files of renders without it keep their bytes.
   if (s.split > 1) a.push_back({"prism/split", s.split});
   // Written only when samples are shared by error, so files of uniform renders keep their bytes.
-  if (s.allocation != "uniform") a.push_back({"prism/allocation", s.allocation});
-  if (adaptive || s.allocation != "uniform") a.push_back({"prism/minSpp", s.min_spp});
+  const bool by_error = s.allocation != kUniformAllocation;
+  if (by_error) a.push_back({"prism/allocation", s.allocation});
+  if (adaptive || by_error) a.push_back({"prism/minSpp", s.min_spp});
   if (timed || adaptive) {
     a.push_back({"prism/sppLimit", s.spp});
     a.push_back({"prism/passes", stats.passes});

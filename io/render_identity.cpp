@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "core/render_settings.h"
 #include "io/errors.h"
 
 namespace prism {
@@ -26,18 +27,19 @@ void check_same_render(const ExrImage& image, const std::string& path, const Exr
   // and prism/split only away from their defaults.
   struct Key {
     const char* name;
-    const char* absent;
+    std::string absent;
   };
-  static const Key keys[] = {{"prism/aovs", ""},          {"prism/seed", ""},           {"prism/sampler", ""},
-                             {"prism/integrator", ""},    {"prism/maxDepth", ""},       {"prism/maxDiffuseDepth", ""},
-                             {"prism/rrStartDepth", ""},  {"prism/clampIndirect", ""},  {"prism/scene", ""},
-                             {"prism/camera", ""},        {"prism/environment", ""},    {"prism/lightSampler", ""},
-                             {"prism/allocation", "uniform"}, {"prism/casterShare", ""}, {"prism/textureFilter", ""},
-                             {"prism/split", "1"}};
+  const RenderSettings defaults;
+  const Key keys[] = {{"prism/aovs", ""},          {"prism/seed", ""},           {"prism/sampler", ""},
+                      {"prism/integrator", ""},    {"prism/maxDepth", ""},       {"prism/maxDiffuseDepth", ""},
+                      {"prism/rrStartDepth", ""},  {"prism/clampIndirect", ""},  {"prism/scene", ""},
+                      {"prism/camera", ""},        {"prism/environment", ""},    {"prism/lightSampler", ""},
+                      {"prism/allocation", defaults.allocation}, {"prism/casterShare", ""},
+                      {"prism/textureFilter", ""}, {"prism/split", std::to_string(defaults.split)}};
   for (const Key& key : keys) {
     const auto text = [&key](const ExrImage& file) {
       const std::string t = attribute_text(file, key.name);
-      return t.empty() ? std::string(key.absent) : t;
+      return t.empty() ? key.absent : t;
     };
     const std::string mine = text(image), theirs = text(reference);
     if (mine != theirs)

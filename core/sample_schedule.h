@@ -34,6 +34,9 @@ class SampleSchedule {
   // errors added, a bound reached when they are fully correlated, as they nearly are) over the
   // larger of the pixel's luminance and a floor of 1% of the image's mean luminance.
   double relative_error(const Film& film, int x, int y) const;
+  // Each pixel's error as the noise target judges it: the larger of its own relative_error and the
+  // mean of its neighbours' that are not 0 (see sample_schedule.cpp).
+  std::vector<double> judged_errors(const Film& film) const;
   // Measures that floor from the film (done before each adaptive pass).
   void update_floor(const Film& film);
 

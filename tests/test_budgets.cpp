@@ -7,7 +7,9 @@
 #include "core/camera.h"
 #include "core/renderer.h"
 #include "core/sampler_factory.h"
+#include "core/sample_schedule.h"
 #include "core/scene.h"
+#include "bernoulli_pixels.h"
 #include "furnace_scene.h"
 #include "integrators/path_integrator.h"
 #include "statistics.h"
@@ -91,6 +93,36 @@ TEST(Budgets, NoiseTargetIsMetOnTheFurnace) {
     EXPECT_EQ(r.stats.converged_fraction, 1.0);
     EXPECT_GE(r.stats.spp_min, uint64_t(s.min_spp));
   }
+}
+
+// Every pixel of this film is lit, on one sample in ten: at min_spp 16 a pixel sees no hit with
+// probability 0.9^16 = 18.5%, and judged by its own samples alone (no variance, so no error) it
+// would stop there at 0. Judged with its neighbours, which saw hits, it goes on until they too are
+// under the target (about 225 samples each at 0.2), and a pixel still without a hit by then has
+// odds of 0.9^225 = 5e-11: none of the 2304 may end at 0. Their real relative errors are printed.
+TEST(Budgets, NoiseTargetIsNotFooledByARunOfMisses) {
+  constexpr int kSize = 48;
+  constexpr double kHit = 0.1;
+  RenderSettings s;
+  s.width = s.height = kSize;
+  s.spp = 4096;
+  s.min_spp = 16;
+  s.noise_target = 0.2;
+  SampleSchedule schedule(s, kSize, kSize);
+  Film film(kSize, kSize);
+  const uint64_t samples = test::render_bernoulli_pixels(schedule, film, kHit);
+  int dark = 0;
+  double sq = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      float rgba[4];
+      film.mean(x, y, rgba);
+      dark += rgba[0] == 0;
+      sq += (rgba[0] - kHit) * (rgba[0] - kHit) / (kHit * kHit);
+    }
+  std::printf("%d pixels at 0; real relative error %.4f (RMS), %.1f samples per pixel\n", dark,
+              std::sqrt(sq / (kSize * kSize)), double(samples) / (kSize * kSize));
+  EXPECT_EQ(dark, 0);
 }
 
 TEST(Budgets, AdaptiveRenderDoesNotDependOnThreads) {

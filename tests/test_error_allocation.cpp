@@ -9,10 +9,10 @@
 #include "core/camera.h"
 #include "core/error_allocation.h"
 #include "core/image_metrics.h"
-#include "core/pcg32.h"
 #include "core/renderer.h"
 #include "core/sample_schedule.h"
 #include "core/scene.h"
+#include "bernoulli_pixels.h"
 #include "furnace_scene.h"
 #include "integrators/path_integrator.h"
 
@@ -112,16 +112,7 @@ TEST(ErrorAllocation, CountsBlindToAPixelsOwnSamplesKeepFireflyMeansUnbiased) {
   s.allocation = "error";
   SampleSchedule schedule(s, kSize, kSize);
   Film film(kSize, kSize);
-  std::vector<uint32_t> target;
-  std::vector<Pcg32> streams;
-  for (int i = 0; i < kSize * kSize; ++i) streams.emplace_back(uint64_t(i), 77);
-  uint64_t samples = 0;
-  while (schedule.next_pass(film, 1.0, samples, target))
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x)
-        for (uint64_t n = film.sample_count(x, y); n < target[size_t(y) * kSize + x]; ++n, ++samples)
-          film.add_sample(x, y, Rgb(streams[size_t(y) * kSize + x].next_float() < kHit ? 1.0f : 0.0f), 1);
-  EXPECT_EQ(samples, uint64_t(s.spp) * kSize * kSize);
+  EXPECT_EQ(test::render_bernoulli_pixels(schedule, film, kHit), uint64_t(s.spp) * kSize * kSize);
   double mean = 0, variance = 0;
   const double pixels = kSize * kSize;
   for (int y = 0; y < kSize; ++y)

@@ -77,6 +77,22 @@ void Film::mean(int x, int y, float rgba[4]) const {
   for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(px.sum[c] * inv);
 }
 
+void Film::track_halves() {
+  if (!halves_.empty()) return;
+  require_memory(uint64_t(pixels_.size()) * sizeof(Halves),
+                 "the " + std::to_string(width_) + "x" + std::to_string(height_) + " film's half sums");
+  halves_.resize(pixels_.size());
+}
+
+void Film::record_halves(int x, int y) {
+  const Pixel& px = pixel(x, y);
+  Halves& h = halves_[size_t(y) * width_ + x];
+  h.lower = h.upper;
+  h.lower_count = h.upper_count;
+  h.upper = 0.2126 * px.sum[0] + 0.7152 * px.sum[1] + 0.0722 * px.sum[2];  // luminance(), in double
+  h.upper_count = px.count;
+}
+
 Rgb Film::variance_of_mean(int x, int y) const {
   const Pixel& px = pixel(x, y);
   if (px.count < 2) return Rgb(0.0f);
@@ -145,6 +161,7 @@ void Film::merge(const Film& other, int x0, int y0) {
       for (int c = 0; c < 4; ++c) a.sum[c] += b.sum[c];
       for (int c = 0; c < 3; ++c) a.sum_sq[c] += b.sum_sq[c];
       a.count += b.count;
+      if (tracks_halves()) halves_[i] = Halves{};  // the sums no longer follow sample indices
       for (int k = 0; k < average_stride_; ++k)
         average_sums_[i * size_t(average_stride_) + size_t(k)] += other.average_sums_[j * size_t(average_stride_) + size_t(k)];
       if (tracks_nearest()) keep_nearer(i, other.nearest_depth_[j], other.nearest_object_[j], other.nearest_material_[j]);

@@ -22,6 +22,15 @@ class Film {
     double sum_sq[3] = {0, 0, 0};
     uint64_t count = 0;
   };
+  // A pixel's luminance sums at the two latest power-of-two counts reached since track_halves():
+  // with a stratified sampler, samples [0, m) and [m, 2m) are two stratified sets of their own, and
+  // the difference of their means shows the sampler's own error (core/stratified_error.h).
+  struct Halves {
+    double lower = 0, upper = 0;  // luminance sums at lower_count and upper_count samples
+    uint64_t lower_count = 0, upper_count = 0;
+    // Both sums recorded, at m and 2m samples: m = lower_count.
+    bool valid() const { return lower_count > 0 && upper_count == 2 * lower_count; }
+  };
 
   Film(int width, int height, AovSet aovs = {});
 
@@ -40,6 +49,7 @@ class Film {
     px.sum_sq[1] += double(radiance.y) * radiance.y;
     px.sum_sq[2] += double(radiance.z) * radiance.z;
     px.count += 1;
+    if (!halves_.empty() && (px.count & (px.count - 1)) == 0) record_halves(x, y);
   }
   // Adds the AOVs of the sample just added with add_sample: `depth` is its planar camera depth
   // (kBackgroundDepth on a miss).
@@ -49,6 +59,11 @@ class Film {
     object_ids_ = std::move(objects);
     material_ids_ = std::move(materials);
   }
+
+  // Starts recording every pixel's Halves (kept until the film is merged into).
+  void track_halves();
+  bool tracks_halves() const { return !halves_.empty(); }
+  const Halves& halves(int x, int y) const { return halves_[size_t(y) * width_ + x]; }
 
   // Mean of the samples of pixel (x, y) as RGBA; zero for a pixel with no samples.
   void mean(int x, int y, float rgba[4]) const;
@@ -99,10 +114,12 @@ class Film {
 
  private:
   void keep_nearer(size_t pixel, float depth, int32_t object, int32_t material);
+  void record_halves(int x, int y);
 
   int width_, height_;
   AovSet aovs_;
   std::vector<Pixel> pixels_;
+  std::vector<Halves> halves_;  // empty unless tracked
   int average_stride_ = 0;
   std::vector<double> average_sums_;
   std::vector<float> nearest_depth_;

@@ -117,6 +117,7 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
   SampleSchedule schedule(settings, width, height);
+  if (schedule.uses_halves()) film.track_halves();
   std::optional<tbb::task_arena> arena;
   if (settings.threads > 0) arena.emplace(settings.threads);
   if (!settings.crop.empty() && (settings.crop.width() != width || settings.crop.height() != height))
@@ -133,12 +134,10 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     stats.spp_max = counts.max;
     double error_sq = 0;
     uint64_t converged = 0;
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const double e = schedule.relative_error(film, x, y);
-        error_sq += e * e;
-        converged += settings.noise_target > 0 && e <= settings.noise_target;
-      }
+    for (double e : schedule.estimated_errors(film)) {
+      error_sq += e * e;
+      converged += settings.noise_target > 0 && e <= settings.noise_target;
+    }
     const double pixels = double(width) * height;
     stats.spp_mean = double(counts.total) / pixels;  // a resumed film's samples count too
     stats.relative_error = std::sqrt(error_sq / pixels);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "core/error_allocation.h"
+#include "core/sampler_factory.h"
+#include "core/stratified_error.h"
 
 namespace prism {
 namespace {
@@ -27,9 +29,9 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
       pass_seconds_(settings.pass_seconds),
       noise_target_(settings.noise_target),
       by_error_(settings.allocation == "error"),
+      uses_halves_(settings.noise_target > 0 && sampler_is_stratified(settings.sampler) && settings.first_sample == 0),
       pixels_(size_t(width) * size_t(height)),
-      expected_samples_(uint64_t(width) * height * max_spp_),
-      converged_(pixels_, 0) {
+      expected_samples_(uint64_t(width) * height * max_spp_) {
   const std::vector<std::string> names = allocation_names();
   if (std::find(names.begin(), names.end(), settings.allocation) == names.end()) {
     std::string known;
@@ -60,6 +62,21 @@ double SampleSchedule::relative_error(const Film& film, int x, int y) const {
   return standard_error / std::max(double(luminance(mean_colour(film, x, y))), floor_);
 }
 
+// With halves the estimate is Sobol's own error, not that of independent samples: on the Cornell
+// box at 0.05 the real error went from 0.032 at 879 spp to 0.044 at 437, the estimate 0.042
+// (docs/PERFORMANCE.md, session 52).
+std::vector<double> SampleSchedule::estimated_errors(const Film& film) const {
+  const int width = film.width(), height = film.height();
+  std::vector<double> errors(pixels_);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) errors[size_t(y) * size_t(width) + size_t(x)] = relative_error(film, x, y);
+  if (film.tracks_halves()) {
+    const std::vector<double> factors = stratification_factors(film);
+    for (size_t i = 0; i < pixels_; ++i) errors[i] *= std::sqrt(factors[i]);  // a factor of the variance
+  }
+  return errors;
+}
+
 // A pixel whose samples all missed what lights its neighbours (a run of zeros in a dim corner, say)
 // has no variance of its own to show, and judged by itself would stop at min_spp with the wrong
 // mean. So a pixel is judged by the larger of its own error and the mean error of its neighbours
@@ -67,14 +84,12 @@ double SampleSchedule::relative_error(const Film& film, int x, int y) const {
 // the neighbourhood, too, is under the target. Neighbours with no variance either are left out of
 // the mean, since theirs is the same non-evidence (with them, a pixel among other runs of misses
 // stopped). Cycles' adaptive sampling guards the same way by spreading "not converged" to a
-// pixel's neighbours; the mean costs fewer samples than that maximum (Cornell box at 0.05: mean
-// 879 spp against 1036, both under the target, where a pixel's own error alone took 728 and left
-// the image at 0.064; docs/PERFORMANCE.md, session 51).
+// pixel's neighbours; the mean costs fewer samples than that maximum (Cornell box at 0.05, errors
+// as if independent: mean 879 spp against 1036, both under the target, where a pixel's own error
+// alone took 728 and left the image at 0.064; docs/PERFORMANCE.md, session 51).
 std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
   const int width = film.width(), height = film.height();
-  std::vector<double> own(pixels_);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) own[size_t(y) * size_t(width) + size_t(x)] = relative_error(film, x, y);
+  const std::vector<double> own = estimated_errors(film);
   std::vector<double> judged(pixels_);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -179,12 +194,14 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
   for (size_t i = 0; i < pixels_; ++i) {
     const uint32_t count = counts[i];
     uint32_t next = count;
-    if (count < max_spp_ && !converged_[i]) {
+    // A pixel under the target is judged again each pass rather than stopped for good: with halves
+    // its estimate pools its neighbours' evidence, which goes on growing after it stops (a stopped
+    // pixel whose estimate rose would otherwise hold its neighbours' judged errors above the target
+    // until max_spp: the window room took 44 passes instead of 9).
+    if (count < max_spp_) {
       if (adaptive()) {
         const double error = judged[i];
-        if (error <= noise_target_) {
-          converged_[i] = 1;
-        } else {
+        if (error > noise_target_) {
           // Standard error falls as 1/sqrt(n): aim 10% past the estimate, at most doubling, since
           // the estimate itself is noisy.
           const double needed = std::ceil(double(count) * (error / noise_target_) * (error / noise_target_) * 1.1);

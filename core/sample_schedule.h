@@ -30,12 +30,21 @@ class SampleSchedule {
   // Samples a whole render is expected to take, for progress reports (an estimate under budgets).
   uint64_t expected_samples() const { return expected_samples_; }
 
-  // Estimated relative standard error of a pixel's luminance: the standard error (the channels'
-  // errors added, a bound reached when they are fully correlated, as they nearly are) over the
-  // larger of the pixel's luminance and a floor of 1% of the image's mean luminance.
+  // Whether the noise target measures the sampler's own error from the film's half sums: a noise
+  // target with a stratified sampler whose sample indices start at 0 (so that power-of-two blocks
+  // of a pixel's samples are nets). The film must then track_halves(), as render() has it do.
+  bool uses_halves() const { return uses_halves_; }
+
+  // Estimated relative standard error of a pixel's luminance as if its samples were independent:
+  // the standard error (the channels' errors added, a bound reached when they are fully
+  // correlated, as they nearly are) over the larger of the pixel's luminance and a floor of 1% of
+  // the image's mean luminance.
   double relative_error(const Film& film, int x, int y) const;
-  // Each pixel's error as the noise target judges it: the larger of its own relative_error and the
-  // mean of its neighbours' that are not 0 (see sample_schedule.cpp).
+  // Every pixel's estimated relative error, top row first: relative_error, scaled down by the
+  // sampler's stratification (core/stratified_error.h) when the film tracks halves.
+  std::vector<double> estimated_errors(const Film& film) const;
+  // Each pixel's error as the noise target judges it: the larger of its own estimated error and
+  // the mean of its neighbours' that are not 0 (see sample_schedule.cpp).
   std::vector<double> judged_errors(const Film& film) const;
   // Measures that floor from the film (done before each adaptive pass).
   void update_floor(const Film& film);
@@ -51,11 +60,11 @@ class SampleSchedule {
 
   double time_budget_, pass_seconds_, noise_target_;
   bool by_error_;
+  bool uses_halves_;
   size_t pixels_;
   int passes_ = 0;
   double floor_ = 1e-30;
   uint64_t expected_samples_;
-  std::vector<uint8_t> converged_;
 };
 
 }  // namespace prism

@@ -8,6 +8,8 @@ namespace prism {
 
 std::vector<std::string> sampler_names() { return {"sobol", "independent"}; }
 
+bool sampler_is_stratified(const std::string& name) { return name == "sobol"; }
+
 std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed) {
   if (name == "sobol") return std::make_unique<SobolSampler>(seed);
   if (name == "independent") return std::make_unique<IndependentSampler>(seed);

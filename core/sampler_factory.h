@@ -12,6 +12,10 @@ namespace prism {
 
 std::vector<std::string> sampler_names();  // the default first
 
+// Whether the sampler's points are stratified in nets of power-of-two blocks of sample indices
+// (Owen-scrambled Sobol), so that the first m and the next m samples of a pixel are two such nets.
+bool sampler_is_stratified(const std::string& name);
+
 // Throws std::invalid_argument naming the known samplers for an unknown name.
 std::unique_ptr<Sampler> make_sampler(const std::string& name, uint64_t seed);
 

@@ -64,6 +64,7 @@ class Film {
   void track_halves();
   bool tracks_halves() const { return !halves_.empty(); }
   const Halves& halves(int x, int y) const { return halves_[size_t(y) * width_ + x]; }
+  Halves& halves(int x, int y) { return halves_[size_t(y) * width_ + x]; }
 
   // Mean of the samples of pixel (x, y) as RGBA; zero for a pixel with no samples.
   void mean(int x, int y, float rgba[4]) const;

@@ -15,8 +15,9 @@ namespace {
 
 constexpr const char* kPrefix = "prism.state.";
 
-// The doubles of one pixel, in a fixed order: sum RGBA, squared sums RGB, count, AOV sums.
-int doubles_per_pixel(const Film& film) { return 8 + film.average_slots(); }
+// The doubles of one pixel, in a fixed order: sum RGBA, squared sums RGB, count, AOV sums, and
+// when the film tracks them its Halves (sums, then counts).
+int doubles_per_pixel(const Film& film) { return 8 + film.average_slots() + (film.tracks_halves() ? 4 : 0); }
 
 void pixel_doubles(const Film& film, int x, int y, double* out) {
   const Film::Pixel& p = film.pixel(x, y);
@@ -24,6 +25,14 @@ void pixel_doubles(const Film& film, int x, int y, double* out) {
   for (int c = 0; c < 3; ++c) out[4 + c] = p.sum_sq[c];
   out[7] = std::bit_cast<double>(p.count);
   for (int k = 0; k < film.average_slots(); ++k) out[8 + k] = film.average_sums(x, y)[k];
+  if (film.tracks_halves()) {
+    const Film::Halves& h = film.halves(x, y);
+    double* o = out + 8 + film.average_slots();
+    o[0] = h.lower;
+    o[1] = h.upper;
+    o[2] = std::bit_cast<double>(h.lower_count);
+    o[3] = std::bit_cast<double>(h.upper_count);
+  }
 }
 
 void set_pixel_doubles(Film& film, int x, int y, const double* in) {
@@ -32,6 +41,10 @@ void set_pixel_doubles(Film& film, int x, int y, const double* in) {
   for (int c = 0; c < 3; ++c) p.sum_sq[c] = in[4 + c];
   p.count = std::bit_cast<uint64_t>(in[7]);
   for (int k = 0; k < film.average_slots(); ++k) film.average_sums(x, y)[k] = in[8 + k];
+  if (film.tracks_halves()) {
+    const double* i = in + 8 + film.average_slots();
+    film.halves(x, y) = {i[0], i[1], std::bit_cast<uint64_t>(i[2]), std::bit_cast<uint64_t>(i[3])};
+  }
 }
 
 // Channel `name` when the image has it, checked to hold its pixels as `type` says: the film
@@ -105,7 +118,7 @@ std::optional<std::vector<PixelIdCounts>> id_count_state(const ExrImage& image, 
 void add_film_state(const Film& film, ExrImage& image) {
   const int w = film.width(), h = film.height(), k = doubles_per_pixel(film);
   const size_t n = size_t(w) * size_t(h);
-  std::vector<std::vector<uint32_t>> halves(size_t(2 * k), std::vector<uint32_t>(n));
+  std::vector<std::vector<uint32_t>> words(size_t(2 * k), std::vector<uint32_t>(n));  // each double's high, low
   std::vector<double> d(static_cast<size_t>(k));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -113,13 +126,13 @@ void add_film_state(const Film& film, ExrImage& image) {
       pixel_doubles(film, x, y, d.data());
       for (int j = 0; j < k; ++j) {
         const uint64_t bits = std::bit_cast<uint64_t>(d[size_t(j)]);
-        halves[size_t(2 * j)][i] = uint32_t(bits >> 32);
-        halves[size_t(2 * j + 1)][i] = uint32_t(bits);
+        words[size_t(2 * j)][i] = uint32_t(bits >> 32);
+        words[size_t(2 * j + 1)][i] = uint32_t(bits);
       }
     }
   for (int j = 0; j < k; ++j) {
-    image.channels.push_back({kPrefix + std::to_string(j) + "hi", ExrPixelType::Uint, {}, std::move(halves[size_t(2 * j)])});
-    image.channels.push_back({kPrefix + std::to_string(j) + "lo", ExrPixelType::Uint, {}, std::move(halves[size_t(2 * j + 1)])});
+    image.channels.push_back({kPrefix + std::to_string(j) + "hi", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j)])});
+    image.channels.push_back({kPrefix + std::to_string(j) + "lo", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j + 1)])});
   }
   if (film.tracks_nearest()) {
     std::vector<uint32_t> depth(n), object(n), material(n);
@@ -147,6 +160,8 @@ Film film_from_image(const ExrImage& image, const std::string& path) {
   const bool exact = has_film_state(image);
   std::vector<uint64_t> counts(n);
   if (exact) {
+    // Doubles past the film's own are its Halves (a render under a noise target with Sobol).
+    if (image.find(kPrefix + std::to_string(doubles_per_pixel(film)) + "hi")) film.track_halves();
     const int k = doubles_per_pixel(film);
     std::vector<const ExrChannel*> channels;
     for (int j = 0; j < k; ++j)

@@ -10,8 +10,9 @@
 namespace prism {
 
 // Adds uint channels "prism.state.<name>" holding every accumulator of `film` bit for bit (a
-// double as two uint halves): the beauty sums, squared sums and counts, the averaged AOV sums, and
-// the nearest hit, and every Cryptomatte id count (the layers keep only the top ranks).
+// double as two uint halves): the beauty sums, squared sums and counts, the averaged AOV sums, the
+// Halves when the film tracks them, the nearest hit, and every Cryptomatte id count (the layers
+// keep only the top ranks).
 void add_film_state(const Film& film, ExrImage& image);
 
 // Whether `image` carries the channels add_film_state writes.

@@ -76,6 +76,13 @@ void expect_same_film(const Film& a, const Film& b) {
       for (int c = 0; c < 4; ++c) ASSERT_EQ(p.sum[c], q.sum[c]) << x << "," << y;
       for (int c = 0; c < 3; ++c) ASSERT_EQ(p.sum_sq[c], q.sum_sq[c]) << x << "," << y;
       for (int k = 0; k < a.average_slots(); ++k) ASSERT_EQ(a.average_sums(x, y)[k], b.average_sums(x, y)[k]);
+      ASSERT_EQ(a.tracks_halves(), b.tracks_halves());
+      if (a.tracks_halves()) {
+        const Film::Halves &h = a.halves(x, y), &g = b.halves(x, y);
+        ASSERT_TRUE(h.lower == g.lower && h.upper == g.upper && h.lower_count == g.lower_count &&
+                    h.upper_count == g.upper_count)
+            << x << "," << y;
+      }
       ASSERT_EQ(a.nearest_depth(x, y), b.nearest_depth(x, y));
       ASSERT_EQ(a.nearest_object(x, y), b.nearest_object(x, y));
       ASSERT_EQ(a.nearest_material(x, y), b.nearest_material(x, y));
@@ -178,6 +185,34 @@ TEST(Resume, ErrorAllocationStoppedBetweenPassesContinuesToTheSameBits) {
   });
   ASSERT_TRUE(stats.stopped);
   Film resumed = through_exr(scene, stopped, test::make_temp_dir("resume-allocation") + "/between.exr");
+  render_into(scene, s, resumed);
+  expect_same_film(resumed, whole);
+}
+
+// Under a noise target with Sobol each pass is planned from the film's halves as well as its sums:
+// they travel in the film state, so a render stopped between passes and continued plans the same
+// passes and ends with the bits of one render (without them the resumed render judged its pixels
+// as if their samples were independent, and took more).
+TEST(Resume, NoiseTargetStoppedBetweenPassesContinuesToTheSameBits) {
+  const Scene scene(test::aov_scene());
+  RenderSettings s = resume_settings();
+  s.sampler = "sobol";
+  s.noise_target = 0.05;
+  s.spp = 1024;
+  Film whole = empty_film(scene, s);
+  const RenderStats one = render_into(scene, s, whole);
+  ASSERT_GE(one.passes, 4);
+  ASSERT_GT(one.spp_max, one.spp_min);
+
+  RenderProgress between;
+  Film stopped = empty_film(scene, s);
+  int passes = 0;
+  const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
+    if (++passes == 3) between.stop = true;
+  });
+  ASSERT_TRUE(stats.stopped);
+  Film resumed = through_exr(scene, stopped, test::make_temp_dir("resume-noise") + "/between.exr");
+  ASSERT_TRUE(resumed.tracks_halves());
   render_into(scene, s, resumed);
   expect_same_film(resumed, whole);
 }

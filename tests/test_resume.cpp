@@ -109,6 +109,19 @@ Film through_exr(const Scene& scene, const Film& film, const std::string& path) 
   return back;
 }
 
+// A render of `s` stopped once `passes` passes have run, saved to `path` and read back, ready to
+// be continued.
+Film stopped_after_passes(const Scene& scene, const RenderSettings& s, int passes, const std::string& path) {
+  RenderProgress between;
+  Film stopped = empty_film(scene, s);
+  int done = 0;
+  const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
+    if (++done == passes) between.stop = true;
+  });
+  EXPECT_TRUE(stats.stopped);
+  return through_exr(scene, stopped, path);
+}
+
 TEST(Resume, PassesOfAnyLengthGiveTheBitsOfOnePass) {
   const Scene scene(test::aov_scene());
   RenderSettings s = resume_settings();
@@ -177,14 +190,7 @@ TEST(Resume, ErrorAllocationStoppedBetweenPassesContinuesToTheSameBits) {
   ASSERT_GE(one.passes, 3);
   ASSERT_GT(one.spp_max, one.spp_min);
 
-  RenderProgress between;
-  Film stopped = empty_film(scene, s);
-  int passes = 0;
-  const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
-    if (++passes == 2) between.stop = true;
-  });
-  ASSERT_TRUE(stats.stopped);
-  Film resumed = through_exr(scene, stopped, test::make_temp_dir("resume-allocation") + "/between.exr");
+  Film resumed = stopped_after_passes(scene, s, 2, test::make_temp_dir("resume-allocation") + "/between.exr");
   render_into(scene, s, resumed);
   expect_same_film(resumed, whole);
 }
@@ -204,14 +210,7 @@ TEST(Resume, NoiseTargetStoppedBetweenPassesContinuesToTheSameBits) {
   ASSERT_GE(one.passes, 4);
   ASSERT_GT(one.spp_max, one.spp_min);
 
-  RenderProgress between;
-  Film stopped = empty_film(scene, s);
-  int passes = 0;
-  const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
-    if (++passes == 3) between.stop = true;
-  });
-  ASSERT_TRUE(stats.stopped);
-  Film resumed = through_exr(scene, stopped, test::make_temp_dir("resume-noise") + "/between.exr");
+  Film resumed = stopped_after_passes(scene, s, 3, test::make_temp_dir("resume-noise") + "/between.exr");
   ASSERT_TRUE(resumed.tracks_halves());
   render_into(scene, s, resumed);
   expect_same_film(resumed, whole);

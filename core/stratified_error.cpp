@@ -12,13 +12,15 @@ std::vector<double> window_sums(const std::vector<double>& v, int width, int hei
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       double s = 0;
-      for (int k = std::max(0, x - r); k <= std::min(width - 1, x + r); ++k) s += v[size_t(y) * size_t(width) + size_t(k)];
+      for (int k = std::max(0, x - r); k <= std::min(width - 1, x + r); ++k)
+        s += v[size_t(y) * size_t(width) + size_t(k)];
       rows[size_t(y) * size_t(width) + size_t(x)] = s;
     }
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       double s = 0;
-      for (int k = std::max(0, y - r); k <= std::min(height - 1, y + r); ++k) s += rows[size_t(k) * size_t(width) + size_t(x)];
+      for (int k = std::max(0, y - r); k <= std::min(height - 1, y + r); ++k)
+        s += rows[size_t(k) * size_t(width) + size_t(x)];
       out[size_t(y) * size_t(width) + size_t(x)] = s;
     }
   return out;

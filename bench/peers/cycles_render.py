@@ -24,7 +24,8 @@ What it does, in order:
   4. with --env MAP, replaces the black world by an Environment Texture (equirectangular,
      linear interpolation, colour space Linear) behind a Mapping node that turns it to prism's
      orientation (ORIENTATION below), Background strength 1;
-  5. sets Cycles to unbiased, comparable settings: fixed sample count, no adaptive sampling,
+  5. sets Cycles to unbiased, comparable settings: fixed sample count, no adaptive sampling (unless
+     --noise asks for it),
      no denoising, no clamping, no glossy blur, no light threshold, 1-pixel box filter,
      bounces matched to prism's --max-depth (see BOUNCES below);
   6. renders once, writes a float EXR, and prints one machine-readable line:
@@ -53,7 +54,9 @@ def parse_args():
     p.add_argument("--gltf", required=True, help="glTF 2.0 scene to import")
     p.add_argument("--out", required=True, help="output OpenEXR path (float RGBA)")
     p.add_argument("--res", default="512x512", help="WIDTHxHEIGHT")
-    p.add_argument("--spp", type=int, default=64, help="samples per pixel")
+    p.add_argument("--spp", type=int, default=64, help="samples per pixel (the most, with --noise)")
+    p.add_argument("--noise", type=float, default=0.0,
+                   help="adaptive sampling's noise threshold (Cycles' own measure); 0 = off, every pixel --spp")
     p.add_argument("--max-depth", type=int, default=8,
                    help="prism-style maximum depth (bounces); Cycles gets max_bounces = this - 1")
     p.add_argument("--seed", type=int, default=0, help="Cycles sampling seed")
@@ -243,7 +246,10 @@ def configure(args):
     c = scene.cycles
     c.device = "CPU"
     c.samples = args.spp
-    c.use_adaptive_sampling = False
+    c.use_adaptive_sampling = args.noise > 0
+    if args.noise > 0:
+        c.adaptive_threshold = args.noise
+        c.adaptive_min_samples = 0  # Cycles' automatic minimum
     c.use_denoising = False
     c.seed = args.seed
     c.use_animated_seed = False

@@ -60,7 +60,7 @@ class Film {
     material_ids_ = std::move(materials);
   }
 
-  // Starts recording every pixel's Halves (kept until the film is merged into).
+  // Starts recording every pixel's Halves (a merge clears those of the pixels it adds samples to).
   void track_halves();
   bool tracks_halves() const { return !halves_.empty(); }
   const Halves& halves(int x, int y) const { return halves_[size_t(y) * width_ + x]; }

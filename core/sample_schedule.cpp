@@ -29,7 +29,8 @@ SampleSchedule::SampleSchedule(const RenderSettings& settings, int width, int he
       pass_seconds_(settings.pass_seconds),
       noise_target_(settings.noise_target),
       by_error_(settings.allocation == "error"),
-      uses_halves_(settings.noise_target > 0 && sampler_is_stratified(settings.sampler) && settings.first_sample == 0),
+      uses_halves_(settings.noise_target > 0 && sampler_is_stratified(settings.sampler) &&
+                   settings.first_sample == 0),
       pixels_(size_t(width) * size_t(height)),
       expected_samples_(uint64_t(width) * height * max_spp_) {
   const std::vector<std::string> names = allocation_names();

@@ -23,7 +23,8 @@ double metric_value(const ImageComparison& c, const std::string& metric) {
   if (metric == "relmse") return c.all.rel_mse;
   if (metric == "psnr") return c.psnr;
   if (metric == "maxabs") return c.all.max_abs;
-  throw UsageError("--metric: expected rmse, relmse, psnr or maxabs, got '" + metric + "'");
+  if (metric == "relerr") return c.relative_error_rms;
+  throw UsageError("--metric: expected rmse, relmse, psnr, maxabs or relerr, got '" + metric + "'");
 }
 
 // A perceptually ordered dark-to-bright ramp (black, purple, red, orange, pale yellow), sRGB.
@@ -94,6 +95,8 @@ int compare(const CompareOptions& o) {
                c.rmse, c.all.rel_mse, c.all.max_abs);
     fmt::print("PSNR {:.2f} dB (peak 1); non-finite pixels: {} in the image, {} in the reference\n", c.psnr,
                c.nonfinite_test, c.nonfinite_reference);
+    fmt::print("relative error of the luminance per pixel (what --noise bounds): RMS {:.6g}, median {:.6g}\n",
+               c.relative_error_rms, c.relative_error_median);
   }
   if (o.diff) write_difference(o, test, reference);
   if (o.threshold) {
@@ -114,7 +117,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   cmd->add_option("REFERENCE", o.reference, "Reference image of the same size")->required();
   cmd->add_option("--metric", o.metric,
                   "Metric --threshold tests: relmse (default; mean of (a-b)^2/(b^2+0.01)), rmse, psnr (dB, peak 1), "
-                  "maxabs");
+                  "maxabs, relerr (RMS over pixels of the luminance's |a-b|/max(b, 1% of the reference's mean): "
+                  "what --noise bounds)");
   cmd->add_option("--threshold", o.threshold,
                   "Exit with status 5 when the metric is worse than this (PSNR below it; the others above it), or "
                   "when the image has non-finite pixels");

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/vec3.h"
+
 namespace prism {
 namespace {
 
@@ -63,6 +65,28 @@ ImageComparison compare_images(const ImageDesc& test, const ImageDesc& reference
     out.all.max_abs = std::max(out.all.max_abs, e.max_abs);
   }
   out.rmse = std::sqrt(out.all.mse);
+  // The luminance's relative error, against a floor measured on the reference.
+  auto luminance_of = [](const ImageDesc& img, size_t i) {
+    return luminance(Rgb(colour(img, i, 0), colour(img, i, 1), colour(img, i, 2)));
+  };
+  double reference_luminance = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (finite_colour(test, i) && finite_colour(reference, i)) reference_luminance += luminance_of(reference, i);
+  const double floor = std::max(kRelativeErrorFloor * reference_luminance / count, 1e-30);
+  std::vector<double> errors;
+  errors.reserve(out.pixels);
+  double sum_sq_error = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!finite_colour(test, i) || !finite_colour(reference, i)) continue;
+    const double r = luminance_of(reference, i);
+    errors.push_back(std::abs(luminance_of(test, i) - r) / std::max(r, floor));
+    sum_sq_error += errors.back() * errors.back();
+  }
+  if (!errors.empty()) {
+    out.relative_error_rms = std::sqrt(sum_sq_error / double(errors.size()));
+    std::nth_element(errors.begin(), errors.begin() + ptrdiff_t(errors.size() / 2), errors.end());
+    out.relative_error_median = errors[errors.size() / 2];
+  }
   out.psnr = out.all.mse > 0 ? -10.0 * std::log10(out.all.mse) : std::numeric_limits<double>::infinity();
   return out;
 }

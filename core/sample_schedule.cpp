@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error_allocation.h"
+#include "core/image_metrics.h"
 #include "core/sampler_factory.h"
 #include "core/stratified_error.h"
 
@@ -54,7 +55,7 @@ void SampleSchedule::update_floor(const Film& film) {
   double sum = 0;
   for (int y = 0; y < film.height(); ++y)
     for (int x = 0; x < film.width(); ++x) sum += luminance(mean_colour(film, x, y));
-  floor_ = std::max(0.01 * sum / double(pixels_), 1e-30);
+  floor_ = std::max(kRelativeErrorFloor * sum / double(pixels_), 1e-30);
 }
 
 double SampleSchedule::relative_error(const Film& film, int x, int y) const {

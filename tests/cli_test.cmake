@@ -166,6 +166,11 @@ if(NOT last_out MATCHES "relMSE" OR NOT last_out MATCHES "relmse 0 within thresh
 endif()
 run(5 "${PRISM}" compare "${WORK_DIR}/timed.exr" "${WORK_DIR}/adaptive.exr" --metric rmse --threshold 1e-9
     --diff "${WORK_DIR}/diff.exr")
+# The measure --noise bounds, as a threshold: two renders of one scene differ by it, an image from itself not.
+run(0 "${PRISM}" compare "${WORK_DIR}/timed.exr" "${WORK_DIR}/timed.exr" --metric relerr --threshold 0)
+run(5 "${PRISM}" compare "${WORK_DIR}/timed.exr" "${WORK_DIR}/adaptive.exr" --metric relerr --threshold 1e-9)
+expect_match("${last_out}" "relative error of the luminance per pixel \\(what --noise bounds\\): RMS [0-9]"
+             "compare's relative error line")
 if(NOT EXISTS "${WORK_DIR}/diff.exr" OR NOT EXISTS "${WORK_DIR}/same.png")
   message(FATAL_ERROR "compare did not write its difference images")
 endif()

@@ -187,7 +187,9 @@ int converge(const ConvergeOptions& o) {
                               std::filesystem::path(p.scene_path).filename().string(), p.settings.width,
                               p.settings.height),
                   "render time (s)", "relMSE", {}};
-  if (!ro.quiet) fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency");
+  if (!ro.quiet)
+    fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}{:>12}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency",
+               "rel. error");
   for (const Variant& variant : variants) {
     RenderSettings s = variant.settings;
     std::unique_ptr<Integrator> integrator;
@@ -214,8 +216,8 @@ int converge(const ConvergeOptions& o) {
         Row row{series.name, spp, seconds, compare_images(film_image(film), *reference)};
         const double efficiency = 1.0 / (row.error.all.rel_mse * seconds);
         if (!ro.quiet)
-          fmt::print("{:<24}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}\n", row.setting, spp, seconds,
-                     row.error.rmse, row.error.all.rel_mse, efficiency);
+          fmt::print("{:<24}{:>8.6g}{:>12.3f}{:>12.5g}{:>12.5g}{:>14.5g}{:>12.5g}\n", row.setting, spp, seconds,
+                     row.error.rmse, row.error.all.rel_mse, efficiency, row.error.relative_error_rms);
         series.points.emplace_back(seconds, row.error.all.rel_mse);
         rows.push_back(row);
       };
@@ -255,10 +257,12 @@ int converge(const ConvergeOptions& o) {
     }
   }
 
-  std::string csv = "setting,spp,seconds,rmse,relmse,efficiency\n";
+  // relerr (last, so that readers of the older columns keep their places): the RMS relative error of
+  // the luminance per pixel, what --noise bounds.
+  std::string csv = "setting,spp,seconds,rmse,relmse,efficiency,relerr\n";
   for (const Row& r : rows)
-    csv += fmt::format("{},{:.8g},{:.6f},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
-                       r.error.all.rel_mse, 1.0 / (r.error.all.rel_mse * r.seconds));
+    csv += fmt::format("{},{:.8g},{:.6f},{:.8g},{:.8g},{:.8g},{:.8g}\n", r.setting, r.spp, r.seconds, r.error.rmse,
+                       r.error.all.rel_mse, 1.0 / (r.error.all.rel_mse * r.seconds), r.error.relative_error_rms);
   write_file_atomically(csv_path, csv);
   write_loglog_svg(svg_path, plot);
   if (!ro.quiet) {

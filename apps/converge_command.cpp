@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -267,7 +268,10 @@ int converge(const ConvergeOptions& o) {
   write_loglog_svg(svg_path, plot);
   if (!ro.quiet) {
     fmt::print("fitted slopes of log relMSE against log time (Monte Carlo: -1):");
-    for (const PlotSeries& s : plot.series) fmt::print(" {} {:.2f};", s.name, loglog_slope(s.points));
+    for (const PlotSeries& s : plot.series) {
+      const double slope = loglog_slope(s.points);  // NaN for a series of one point, as the plot says
+      fmt::print(" {} {};", s.name, std::isfinite(slope) ? fmt::format("{:.2f}", slope) : std::string("n/a"));
+    }
     fmt::print("\n-> {}, {}\n", csv_path, svg_path);
   }
   return kExitOk;

@@ -60,8 +60,11 @@ std::vector<double> stratification_factors(const Film& film) {
   const std::vector<double> d2_sums = window_sums(d2, width, height, kStratificationRadius);
   const std::vector<double> expected_sums = window_sums(expected, width, height, kStratificationRadius);
   std::vector<double> factors(pixels, 1.0);
-  for (size_t i = 0; i < pixels; ++i)
-    if (expected_sums[i] > 0) factors[i] = std::clamp(d2_sums[i] / expected_sums[i], kMinStratificationFactor, 1.0);
+  for (size_t i = 0; i < pixels; ++i) {
+    const double ratio = d2_sums[i] / expected_sums[i];
+    // No evidence (0 / 0), or radiance near float's limit (inf / inf): the independent estimate.
+    if (expected_sums[i] > 0 && std::isfinite(ratio)) factors[i] = std::clamp(ratio, kMinStratificationFactor, 1.0);
+  }
   return factors;
 }
 

@@ -189,8 +189,8 @@ int converge(const ConvergeOptions& o) {
                               p.settings.height),
                   "render time (s)", "relMSE", {}};
   if (!ro.quiet)
-    fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}{:>12}\n", "setting", "spp", "seconds", "RMSE", "relMSE", "efficiency",
-               "rel. error");
+    fmt::print("{:<24}{:>8}{:>12}{:>12}{:>12}{:>14}{:>12}\n", "setting", "spp", "seconds", "RMSE", "relMSE",
+               "efficiency", "rel. error");
   for (const Variant& variant : variants) {
     RenderSettings s = variant.settings;
     std::unique_ptr<Integrator> integrator;

@@ -131,8 +131,9 @@ void add_film_state(const Film& film, ExrImage& image) {
       }
     }
   for (int j = 0; j < k; ++j) {
-    image.channels.push_back({kPrefix + std::to_string(j) + "hi", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j)])});
-    image.channels.push_back({kPrefix + std::to_string(j) + "lo", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j + 1)])});
+    const std::string name = kPrefix + std::to_string(j);
+    image.channels.push_back({name + "hi", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j)])});
+    image.channels.push_back({name + "lo", ExrPixelType::Uint, {}, std::move(words[size_t(2 * j + 1)])});
   }
   if (film.tracks_nearest()) {
     std::vector<uint32_t> depth(n), object(n), material(n);

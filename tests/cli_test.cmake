@@ -208,7 +208,8 @@ run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.e
     -o "${WORK_DIR}/converge" -q)
 file(STRINGS "${WORK_DIR}/converge/convergence.csv" rows)
 list(LENGTH rows row_count)
-if(NOT row_count EQUAL 3 OR NOT rows MATCHES "^setting,spp,seconds,rmse,relmse,efficiency,relerr;path/sobol,[0-9.]+,[0-9.]+,")
+if(NOT row_count EQUAL 3 OR
+   NOT rows MATCHES "^setting,spp,seconds,rmse,relmse,efficiency,relerr;path/sobol,[0-9.]+,[0-9.]+,")
   message(FATAL_ERROR "converge --times rows: ${rows}")
 endif()
 run(0 "${PRISM}" converge "${box}" --reference "${WORK_DIR}/converge/reference.exr" --spp 16 --noise 0.5,0.2

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 
 #include "aov_scene.h"
 #include "core/renderer.h"
@@ -109,17 +110,31 @@ Film through_exr(const Scene& scene, const Film& film, const std::string& path) 
   return back;
 }
 
-// A render of `s` stopped once `passes` passes have run, saved to `path` and read back, ready to
-// be continued.
-Film stopped_after_passes(const Scene& scene, const RenderSettings& s, int passes, const std::string& path) {
+// Renders `s` whole, which must take at least `min_passes` passes and leave pixels with different
+// counts, and again stopped once `stop_after` passes have run, saved into a temporary folder named
+// `name`, read back (`check_read_back` sees that film) and continued: the two films must be the
+// same, bit for bit.
+void expect_continued_between_passes_to_same_bits(const RenderSettings& s, int min_passes, int stop_after,
+                                                  const std::string& name,
+                                                  const std::function<void(const Film&)>& check_read_back = {}) {
+  const Scene scene(test::aov_scene());
+  Film whole = empty_film(scene, s);
+  const RenderStats one = render_into(scene, s, whole);
+  ASSERT_GE(one.passes, min_passes);
+  ASSERT_GT(one.spp_max, one.spp_min);
+
   RenderProgress between;
   Film stopped = empty_film(scene, s);
   int done = 0;
   const RenderStats stats = render_into(scene, s, stopped, &between, [&](const Film&, const RenderStats&) {
-    if (++done == passes) between.stop = true;
+    if (++done == stop_after) between.stop = true;
   });
-  EXPECT_TRUE(stats.stopped);
-  return through_exr(scene, stopped, path);
+  ASSERT_TRUE(stats.stopped);
+  Film resumed = through_exr(scene, stopped, test::make_temp_dir(name) + "/between.exr");
+  if (check_read_back) check_read_back(resumed);
+  if (::testing::Test::HasFatalFailure()) return;
+  render_into(scene, s, resumed);
+  expect_same_film(resumed, whole);
 }
 
 TEST(Resume, PassesOfAnyLengthGiveTheBitsOfOnePass) {
@@ -180,19 +195,11 @@ TEST(Resume, AStoppedRenderContinuesToTheSameBits) {
 // passes (where checkpoints are written), saved and continued plans the same passes and ends with
 // the bits of one render.
 TEST(Resume, ErrorAllocationStoppedBetweenPassesContinuesToTheSameBits) {
-  const Scene scene(test::aov_scene());
   RenderSettings s = resume_settings();
   s.allocation = "error";
   s.min_spp = 4;
   s.spp = 16;
-  Film whole = empty_film(scene, s);
-  const RenderStats one = render_into(scene, s, whole);
-  ASSERT_GE(one.passes, 3);
-  ASSERT_GT(one.spp_max, one.spp_min);
-
-  Film resumed = stopped_after_passes(scene, s, 2, test::make_temp_dir("resume-allocation") + "/between.exr");
-  render_into(scene, s, resumed);
-  expect_same_film(resumed, whole);
+  expect_continued_between_passes_to_same_bits(s, 3, 2, "resume-allocation");
 }
 
 // Under a noise target with Sobol each pass is planned from the film's halves as well as its sums:
@@ -200,20 +207,12 @@ TEST(Resume, ErrorAllocationStoppedBetweenPassesContinuesToTheSameBits) {
 // passes and ends with the bits of one render (without them the resumed render judged its pixels
 // as if their samples were independent, and took more).
 TEST(Resume, NoiseTargetStoppedBetweenPassesContinuesToTheSameBits) {
-  const Scene scene(test::aov_scene());
   RenderSettings s = resume_settings();
   s.sampler = "sobol";
   s.noise_target = 0.05;
   s.spp = 1024;
-  Film whole = empty_film(scene, s);
-  const RenderStats one = render_into(scene, s, whole);
-  ASSERT_GE(one.passes, 4);
-  ASSERT_GT(one.spp_max, one.spp_min);
-
-  Film resumed = stopped_after_passes(scene, s, 3, test::make_temp_dir("resume-noise") + "/between.exr");
-  ASSERT_TRUE(resumed.tracks_halves());
-  render_into(scene, s, resumed);
-  expect_same_film(resumed, whole);
+  expect_continued_between_passes_to_same_bits(s, 4, 3, "resume-noise",
+                                               [](const Film& f) { ASSERT_TRUE(f.tracks_halves()); });
 }
 
 }  // namespace

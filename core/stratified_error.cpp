@@ -6,24 +6,26 @@
 namespace prism {
 namespace {
 
-// Sums of `v` over the (2r+1)^2 window around each pixel, clipped to the image (separable).
-std::vector<double> window_sums(const std::vector<double>& v, int width, int height, int r) {
-  std::vector<double> rows(v.size()), out(v.size());
+// Sums of `v` (a width x height grid) over the 2r+1 values around each along one axis, x or y,
+// clipped at the grid's edges.
+std::vector<double> sums_along(const std::vector<double>& v, int width, int height, bool along_y, int r) {
+  std::vector<double> out(v.size());
+  const int length = along_y ? height : width;
+  const size_t step = along_y ? size_t(width) : 1;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
+      const int at = along_y ? y : x;
+      const size_t i = size_t(y) * size_t(width) + size_t(x), line_start = i - size_t(at) * step;
       double s = 0;
-      for (int k = std::max(0, x - r); k <= std::min(width - 1, x + r); ++k)
-        s += v[size_t(y) * size_t(width) + size_t(k)];
-      rows[size_t(y) * size_t(width) + size_t(x)] = s;
-    }
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double s = 0;
-      for (int k = std::max(0, y - r); k <= std::min(height - 1, y + r); ++k)
-        s += rows[size_t(k) * size_t(width) + size_t(x)];
-      out[size_t(y) * size_t(width) + size_t(x)] = s;
+      for (int k = std::max(0, at - r); k <= std::min(length - 1, at + r); ++k) s += v[line_start + size_t(k) * step];
+      out[i] = s;
     }
   return out;
+}
+
+// Sums of `v` over the (2r+1)^2 window around each pixel, clipped to the image (separable).
+std::vector<double> window_sums(const std::vector<double>& v, int width, int height, int r) {
+  return sums_along(sums_along(v, width, height, false, r), width, height, true, r);
 }
 
 }  // namespace

@@ -65,14 +65,14 @@ ImageComparison compare_images(const ImageDesc& test, const ImageDesc& reference
     out.all.max_abs = std::max(out.all.max_abs, e.max_abs);
   }
   out.rmse = std::sqrt(out.all.mse);
-  // The luminance's relative error, against a floor measured on the reference.
+  // The luminance's relative error, against a floor of the reference's mean luminance (luminance
+  // is linear: that of the channels' means).
   auto luminance_of = [](const ImageDesc& img, size_t i) {
     return luminance(Rgb(colour(img, i, 0), colour(img, i, 1), colour(img, i, 2)));
   };
-  double reference_luminance = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (finite_colour(test, i) && finite_colour(reference, i)) reference_luminance += luminance_of(reference, i);
-  const double floor = std::max(kRelativeErrorFloor * reference_luminance / count, 1e-30);
+  const Rgb reference_mean(float(out.channel[0].mean_reference), float(out.channel[1].mean_reference),
+                           float(out.channel[2].mean_reference));
+  const double floor = std::max(kRelativeErrorFloor * luminance(reference_mean), 1e-30);
   std::vector<double> errors;
   errors.reserve(out.pixels);
   double sum_sq_error = 0;

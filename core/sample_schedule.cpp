@@ -89,19 +89,23 @@ std::vector<double> SampleSchedule::estimated_errors(const Film& film) const {
 // pixel's neighbours; the mean costs fewer samples than that maximum (Cornell box at 0.05, errors
 // as if independent: mean 879 spp against 1036, both under the target, where a pixel's own error
 // alone took 728 and left the image at 0.064; docs/PERFORMANCE.md, session 51).
+// A neighbour's error counts as it would be at this pixel's sample count (error ~ 1 / sqrt(n)), so
+// that a pixel is not held back by neighbours that merely have fewer samples than it (a rare
+// bright light at 0.05: 1134 spp instead of 1209 for the same error; docs/PERFORMANCE.md, session 53).
 std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
   const int width = film.width(), height = film.height();
   const std::vector<double> own = estimated_errors(film);
   std::vector<double> judged(pixels_);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
+      const double count = double(std::max<uint64_t>(film.sample_count(x, y), 1));
       double sum = 0;
       int counted = 0;
       for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
           const double e = own[size_t(ny) * size_t(width) + size_t(nx)];
           if ((nx != x || ny != y) && e > 0) {
-            sum += e;
+            sum += e * std::sqrt(double(film.sample_count(nx, ny)) / count);
             ++counted;
           }
         }

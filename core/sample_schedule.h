@@ -44,7 +44,8 @@ class SampleSchedule {
   // sampler's stratification (core/stratified_error.h) when the film tracks halves.
   std::vector<double> estimated_errors(const Film& film) const;
   // Each pixel's error as the noise target judges it: the larger of its own estimated error and
-  // the mean of its neighbours' that are not 0 (see sample_schedule.cpp).
+  // the mean of its neighbours' that are not 0, each taken at this pixel's sample count (see
+  // sample_schedule.cpp).
   std::vector<double> judged_errors(const Film& film) const;
   // Measures that floor from the film (done before each adaptive pass).
   void update_floor(const Film& film);

@@ -126,6 +126,28 @@ TEST(Budgets, NoiseTargetIsNotFooledByARunOfMisses) {
   EXPECT_EQ(dark, 0);
 }
 
+// Every pixel's samples alternate 0 and 2 (the same per-sample variance everywhere); the centre
+// pixel has 64 of them, its eight neighbours 16. The variance of an n-sample mean is then
+// 1 / (n - 1): the centre's own error is sqrt(1/63), a neighbour's sqrt(1/15) at its 16 samples and
+// sqrt(1/15 * 16/64) = sqrt(1/60) at the centre's 64. The centre is judged by the latter: taken at
+// their own counts, neighbours that merely have fewer samples would hold it to twice its error.
+TEST(Budgets, NoiseTargetJudgesNeighboursAtThePixelsOwnCount) {
+  RenderSettings s;
+  s.width = s.height = 3;
+  s.spp = 4096;
+  s.noise_target = 0.1;
+  SampleSchedule schedule(s, 3, 3);
+  Film film(3, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x)
+      for (int k = 0; k < (x == 1 && y == 1 ? 64 : 16); ++k) film.add_sample(x, y, Rgb(k % 2 ? 2.0f : 0.0f), 1);
+  schedule.update_floor(film);
+  const std::vector<double> own = schedule.estimated_errors(film), judged = schedule.judged_errors(film);
+  EXPECT_NEAR(own[4], std::sqrt(1.0 / 63), 1e-6);
+  EXPECT_NEAR(own[0], std::sqrt(1.0 / 15), 1e-6);
+  EXPECT_NEAR(judged[4], std::sqrt(1.0 / 60), 1e-6);
+}
+
 TEST(Budgets, AdaptiveRenderDoesNotDependOnThreads) {
   RenderSettings s = furnace_settings();
   s.noise_target = 0.05;

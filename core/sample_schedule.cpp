@@ -89,9 +89,10 @@ std::vector<double> SampleSchedule::estimated_errors(const Film& film) const {
 // pixel's neighbours; the mean costs fewer samples than that maximum (Cornell box at 0.05, errors
 // as if independent: mean 879 spp against 1036, both under the target, where a pixel's own error
 // alone took 728 and left the image at 0.064; docs/PERFORMANCE.md, session 51).
-// A neighbour's error counts as it would be at this pixel's sample count (error ~ 1 / sqrt(n)), so
-// that a pixel is not held back by neighbours that merely have fewer samples than it (a rare
-// bright light at 0.05: 1134 spp instead of 1209 for the same error; docs/PERFORMANCE.md, session 53).
+// A neighbour's error counts as it would be at this pixel's sample count (error ~ 1 / sqrt(n), the
+// law of independent samples; Sobol's falls a little faster), so that a pixel is not held back by
+// neighbours that merely have fewer samples than it (a rare bright light at 0.05: 1134 spp
+// instead of 1209 for the same error; docs/PERFORMANCE.md, session 53).
 std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
   const int width = film.width(), height = film.height();
   const std::vector<double> own = estimated_errors(film);

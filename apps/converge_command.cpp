@@ -246,7 +246,6 @@ int converge(const ConvergeOptions& o) {
           render_budgeted(timed);
         }
       } else {
-        if (s.allocation != kUniformAllocation) continue;  // a noise target shares samples by its own rule
         for (double target : targets) {
           RenderSettings adaptive = s;
           adaptive.noise_target = target;

@@ -181,10 +181,12 @@ int render(const RenderOptions& o, const BatchContext& batch) {
                preview ? " + " + *preview : "");
     if (settings.counts_follow_the_render())
       fmt::print("{} passes, estimated relative error {:.4f} (RMS over pixels){}\n", stats.passes, stats.relative_error,
-                 settings.noise_target > 0
+                 settings.noise_target <= 0 ? std::string()
+                 : settings.allocation == kUniformAllocation
                      ? fmt::format(", {:.1f}% of pixels under the noise target {}", 100 * stats.converged_fraction,
                                    settings.noise_target)
-                     : std::string());
+                     : fmt::format(", the whole image's noise target {} ({:.1f}% of pixels under it)",
+                                   settings.noise_target, 100 * stats.converged_fraction));
     if (o.resume) fmt::print("continued {} with {} samples it already had\n", *o.resume, si(double(resumed_samples)));
   }
   return kExitOk;

@@ -67,8 +67,6 @@ RenderSettings resolve_settings(const RenderOptions& o, const std::optional<JobF
   check_allocation_name("--allocation", s.allocation);
   if (s.texture_filter != "trilinear" && s.texture_filter != "bilinear")
     throw UsageError("--texture-filter: unknown filter '" + s.texture_filter + "' (expected trilinear or bilinear)");
-  if (s.allocation == "error" && s.noise_target > 0)
-    throw UsageError("--allocation error cannot be combined with --noise, which shares samples by its own rule");
   // Under a budget, spp is only a ceiling: none with a time budget, a generous one for a noise target.
   const bool spp_given = o.settings.spp || (job && job->settings.spp);
   if (!spp_given && s.time_budget > 0) s.spp = s.noise_target > 0 ? 4096 : (1 << 30);

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/image_metrics.h"
+#include "core/pixel_neighbours.h"
 
 namespace prism {
 
@@ -25,19 +26,21 @@ std::vector<double> error_weights(const Film& film) {
         sum += double(variance_of_mean[c]) * double(n) / (double(m[c]) * m[c] + kRelMseEpsilon);
       r[size_t(y) * width + x] = std::isfinite(sum) ? sum : 0.0;
     }
+  return neighbour_weights(r, width, height);
+}
+
+std::vector<double> neighbour_weights(const std::vector<double>& r, int width, int height) {
+  const size_t pixels = size_t(width) * size_t(height);
   std::vector<double> weights(pixels, 0.0);
   bool any = false;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       double sum = 0;
       int neighbours = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-          sum += r[size_t(ny) * width + nx];
-          ++neighbours;
-        }
+      for_each_neighbour(x, y, width, height, [&](int nx, int ny) {
+        sum += r[size_t(ny) * width + nx];
+        ++neighbours;
+      });
       const double w = neighbours > 0 ? std::sqrt(sum / neighbours) : 0.0;
       weights[size_t(y) * width + x] = w;
       any = any || w > 0;

@@ -18,6 +18,10 @@ namespace prism {
 // stays unbiased (a pixel judged by its own samples would stop early after low ones). A film whose
 // pixels all estimate zero (no variance seen yet) gets equal weights.
 std::vector<double> error_weights(const Film& film);
+// The weights from each pixel's R (any measure of a pixel's error whose square falls as 1 / n,
+// times n), top row first: the square root of the mean R of its neighbours inside the image,
+// equal weights when all are zero. error_weights is this with R of the relMSE.
+std::vector<double> neighbour_weights(const std::vector<double>& r, int width, int height);
 
 // Sets target[i] >= counts[i] for every pixel so that the targets add up to `total` (or to as much
 // as `cap` per pixel allows), each pixel as close to lambda x weights[i] as the others allow

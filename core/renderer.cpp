@@ -132,15 +132,11 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     const Film::SampleCounts counts = film.sample_counts();
     stats.spp_min = counts.min;
     stats.spp_max = counts.max;
-    double error_sq = 0;
     uint64_t converged = 0;
-    for (double e : schedule.estimated_errors(film)) {
-      error_sq += e * e;
-      converged += settings.noise_target > 0 && e <= settings.noise_target;
-    }
+    for (double e : schedule.estimated_errors(film)) converged += settings.noise_target > 0 && e <= settings.noise_target;
     const double pixels = double(width) * height;
     stats.spp_mean = double(counts.total) / pixels;  // a resumed film's samples count too
-    stats.relative_error = std::sqrt(error_sq / pixels);
+    stats.relative_error = schedule.image_error(film);
     stats.converged_fraction = double(converged) / pixels;
   };
 

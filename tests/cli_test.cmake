@@ -131,6 +131,10 @@ run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/allocated.exr" --allocation err
 expect_match("${last_out}" "\\(mean 16\\.0\\) spp" "--allocation error missed its mean spp")
 file(STRINGS "${WORK_DIR}/allocated.exr" header LIMIT_INPUT 8000)
 expect_match("${header}" "prism/allocation;string;error" "the header does not record the allocation")
+# A noise target shared by error is the whole image's.
+run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/allocated_noise.exr" --allocation error --noise 0.2 --min-spp 4
+    --spp 64 --res 16x16)
+expect_match("${last_out}" "the whole image's noise target 0.2" "no whole-image summary for --noise with --allocation error")
 # Path splitting: recorded in the header (a render resumed or merged with another split is refused);
 # only the path tracer splits.
 run(0 "${PRISM}" render "${box}" -o "${WORK_DIR}/split.exr" --split 2 --spp 4 --res 16x16)
@@ -150,8 +154,6 @@ expect_match("${last_err}" "--texture-filter: unknown filter 'anisotropic' \\(ex
              "unclear --texture-filter message")
 run(2 "${PRISM}" render "${box}" --allocation greedy -o "${WORK_DIR}/x.exr")
 expect_match("${last_err}" "--allocation: expected uniform or error, got 'greedy'" "unclear --allocation message")
-run(2 "${PRISM}" render "${box}" --allocation error --noise 0.1 -o "${WORK_DIR}/x.exr")
-expect_match("${last_err}" "cannot be combined with --noise" "unclear --allocation with --noise message")
 run(2 "${PRISM}" render "${box}" --allocation error --sample-range 0 4 -o "${WORK_DIR}/x.exr")
 expect_match("${last_err}" "--allocation error" "unclear --allocation with --sample-range message")
 run(2 "${PRISM}" render "${box}" --time soon -o "${WORK_DIR}/x.exr")

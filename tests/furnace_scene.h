@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +53,29 @@ inline FurnaceRender render_furnace(const RenderSettings& settings) {
   out.stats =
       render(scene, Camera(furnace_camera(), settings.width, settings.height), integrator, settings, out.film);
   return out;
+}
+
+// The RMS over pixels of the green channel's relative error against the known radiance `truth` of a
+// render to a noise target, printed with what the render reached; infinite (and a failure) when a
+// pixel is not finite.
+inline double noise_target_render_error(const FurnaceRender& r, double truth, const std::string& sampler,
+                                        double target) {
+  double sq = 0;
+  for (int y = 0; y < r.film.height(); ++y)
+    for (int x = 0; x < r.film.width(); ++x) {
+      float rgba[4];
+      r.film.mean(x, y, rgba);
+      if (!std::isfinite(rgba[1])) {
+        ADD_FAILURE() << "pixel " << x << ", " << y << " is not finite";
+        return INFINITY;
+      }
+      sq += (rgba[1] - truth) * (rgba[1] - truth) / (truth * truth);
+    }
+  const double rms = std::sqrt(sq / (double(r.film.width()) * r.film.height()));
+  std::printf("%s, target %.3f: real relative error %.4f, estimated %.4f, spp %llu-%llu (mean %.1f), %d passes\n",
+              sampler.c_str(), target, rms, r.stats.relative_error, (unsigned long long)r.stats.spp_min,
+              (unsigned long long)r.stats.spp_max, r.stats.spp_mean, r.stats.passes);
+  return rms;
 }
 
 // Renders a small image from inside the enclosure with each sampler; each pixel mean is an

@@ -74,20 +74,7 @@ TEST(Budgets, NoiseTargetIsMetOnTheFurnace) {
     s.noise_target = target;
     s.spp = 1 << 16;
     const FurnaceRender r = render_furnace(s);
-    const double truth = test::furnace_radiance(1.0, 0.5, kDepth);
-    double sq = 0;
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x) {
-        float rgba[4];
-        r.film.mean(x, y, rgba);
-        ASSERT_TRUE(std::isfinite(rgba[1]));
-        const double e = (rgba[1] - truth) / truth;
-        sq += e * e;
-      }
-    const double rms = std::sqrt(sq / (s.width * s.height));
-    std::printf("%s, target %.3f: real relative error %.4f, estimated %.4f, spp %llu-%llu (mean %.1f), %d passes\n", sampler.c_str(), target,
-                rms, r.stats.relative_error, (unsigned long long)r.stats.spp_min, (unsigned long long)r.stats.spp_max,
-                r.stats.spp_mean, r.stats.passes);
+    const double rms = test::noise_target_render_error(r, test::furnace_radiance(1.0, 0.5, kDepth), sampler, target);
     const double estimate_uncertainty = 1.0 / std::sqrt(2.0 * (s.min_spp - 1));
     EXPECT_LT(rms, target * (1 + estimate_uncertainty)) << sampler;
     EXPECT_GT(rms, target * 0.3) << sampler << ": far below the target, samples were wasted";
@@ -146,6 +133,25 @@ TEST(Budgets, NoiseTargetJudgesNeighboursAtThePixelsOwnCount) {
   EXPECT_NEAR(own[4], std::sqrt(1.0 / 63), 1e-6);
   EXPECT_NEAR(own[0], std::sqrt(1.0 / 15), 1e-6);
   EXPECT_NEAR(judged[4], std::sqrt(1.0 / 60), 1e-6);
+}
+
+// The image's error takes each pixel's over its neighbours' mean luminance. Every pixel's 16 samples
+// alternate 0 and 2 (mean 1, variance of the mean 1/15), the centre's 0 and 6 (mean 3, 9/15): by
+// their own luminance all nine err sqrt(1/15). Over the neighbours' the centre errs sqrt(9/15) / 1,
+// a corner sqrt(1/15) / (5/3) (its three neighbours include the centre), an edge sqrt(1/15) / (7/5).
+TEST(Budgets, ImageErrorTakesEachPixelOverItsNeighboursLuminance) {
+  RenderSettings s;
+  s.width = s.height = 3;
+  s.noise_target = 0.1;
+  SampleSchedule schedule(s, 3, 3);
+  Film film(3, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x)
+      for (int k = 0; k < 16; ++k) film.add_sample(x, y, Rgb(k % 2 ? (x == 1 && y == 1 ? 6.0f : 2.0f) : 0.0f), 1);
+  schedule.update_floor(film);
+  for (double e : schedule.estimated_errors(film)) EXPECT_NEAR(e, std::sqrt(1.0 / 15), 1e-6);
+  const double expected = std::sqrt((9 + 4 * (0.6 * 0.6) + 4 * (25.0 / 49)) / 15 / 9);
+  EXPECT_NEAR(schedule.image_error(film), expected, 1e-6);
 }
 
 TEST(Budgets, AdaptiveRenderDoesNotDependOnThreads) {

@@ -215,5 +215,15 @@ TEST(Resume, NoiseTargetStoppedBetweenPassesContinuesToTheSameBits) {
                                                [](const Film& f) { ASSERT_TRUE(f.tracks_halves()); });
 }
 
+// A noise target shared by error: each pass is planned from the film's sums, counts and halves.
+TEST(Resume, NoiseTargetSharedByErrorStoppedBetweenPassesContinuesToTheSameBits) {
+  RenderSettings s = resume_settings();
+  s.sampler = "sobol";
+  s.allocation = "error";
+  s.noise_target = 0.01;
+  s.spp = 1024;
+  expect_continued_between_passes_to_same_bits(s, 4, 3, "resume-noise-allocation");
+}
+
 }  // namespace
 }  // namespace prism

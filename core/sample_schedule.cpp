@@ -116,27 +116,30 @@ std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
 }
 
 // A pixel that caught a rare bright sample (a firefly) has a large variance and a large mean at
-// once, so the ratio of its own understates its error, and one that missed it shows neither: the
-// RMS of the own ratios fell well short of the real error where light arrives rarely (the
-// firefly-speckled box of scenes/cornell-glass/cornell-glass.gltf at 32 spp: 0.26 against a real
-// 0.37, and a whole-image target of 0.2 stopped at a real 0.33). So each pixel's error is taken
-// over its neighbours' mean luminance, which that sample does not move (0.44 there; the target
-// then met: 0.194; the Cornell box unchanged; docs/PERFORMANCE.md, session 54).
+// once, so the ratio of its own understates its error, and one that missed it shows neither:
+// the RMS of the own ratios was half the real error on cornell-glass at 256 spp (0.18 against
+// 0.36), and a whole-image target of 0.2 on its firefly-speckled box stopped at a real 0.33. Over
+// the neighbours' mean luminance alone, which the firefly does not move, it is right there but
+// twice the real error on many-lights, whose small lights are as bright and rare in their pixels
+// while their neighbours are dark. So each pixel's error is taken over its 3x3 block's mean
+// luminance, itself included. Estimate / real at fixed spp (own, neighbours', block): glass 0.51,
+// 1.03, 0.77; many-lights 0.97, 2.24, 1.22; the Cornell box 1.01, 1.01, 0.99; the window room
+// 1.12, 1.11, 1.11 (docs/PERFORMANCE.md, session 54).
 double SampleSchedule::image_error(const Film& film) const {
   const std::vector<double> own = estimated_errors(film);
   const int width = film.width(), height = film.height();
   double sum = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      double neighbours = 0;
-      int counted = 0;
+      const double own_luminance = luminance(mean_colour(film, x, y));
+      double block = own_luminance;
+      int counted = 1;
       for_each_neighbour(x, y, width, height, [&](int nx, int ny) {
-        neighbours += luminance(mean_colour(film, nx, ny));
+        block += luminance(mean_colour(film, nx, ny));
         ++counted;
       });
-      const double own_luminance = std::max(double(luminance(mean_colour(film, x, y))), floor_);
-      const double neighbour_luminance = counted > 0 ? std::max(neighbours / counted, floor_) : own_luminance;
-      const double e = own[size_t(y) * size_t(width) + size_t(x)] * own_luminance / neighbour_luminance;
+      const double e = own[size_t(y) * size_t(width) + size_t(x)] * std::max(own_luminance, floor_) /
+                       std::max(block / counted, floor_);
       sum += e * e;
     }
   return std::sqrt(sum / double(pixels_));
@@ -214,10 +217,12 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
     uint64_t total = 2 * have;
     if (adaptive()) {
       // The whole image is judged, not each pixel: a pixel's count depends on its own samples only
-      // through the image's error, one part in the number of pixels, so its mean stays unbiased (a
-      // pixel stopped by its own samples is biased: darker where a rare bright path was missed, as
-      // through cornell-glass's sphere). With the shares' proportions kept, the image's mean squared
-      // error falls as 1 / total: aim 10% past the estimate, since it is itself noisy.
+      // through the image's error. A pixel stopped by its own samples is biased (darker where a rare
+      // bright path was missed, as through cornell-glass's sphere: 2.5-2.7% at 0.2); here only the
+      // stop of the whole render is, where rare light dominates the image's error (0.1-0.26% there,
+      // against 0.01-0.05% at fixed spp; docs/PERFORMANCE.md, session 54). With the shares'
+      // proportions kept, the image's mean squared error falls as 1 / total: aim 10% past the
+      // estimate, since it is itself noisy.
       const double error = image_error(film);
       if (error <= noise_target_) return false;
       const double needed = std::ceil(double(have) * (error / noise_target_) * (error / noise_target_) * 1.1);

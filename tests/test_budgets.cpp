@@ -135,11 +135,12 @@ TEST(Budgets, NoiseTargetJudgesNeighboursAtThePixelsOwnCount) {
   EXPECT_NEAR(judged[4], std::sqrt(1.0 / 60), 1e-6);
 }
 
-// The image's error takes each pixel's over its neighbours' mean luminance. Every pixel's 16 samples
+// The image's error takes each pixel's over its 3x3 block's mean luminance. Every pixel's 16 samples
 // alternate 0 and 2 (mean 1, variance of the mean 1/15), the centre's 0 and 6 (mean 3, 9/15): by
-// their own luminance all nine err sqrt(1/15). Over the neighbours' the centre errs sqrt(9/15) / 1,
-// a corner sqrt(1/15) / (5/3) (its three neighbours include the centre), an edge sqrt(1/15) / (7/5).
-TEST(Budgets, ImageErrorTakesEachPixelOverItsNeighboursLuminance) {
+// their own luminance all nine err sqrt(1/15). Over the block's the centre errs sqrt(9/15) / (11/9),
+// a corner sqrt(1/15) / (6/4) (its block inside the image holds the centre), an edge
+// sqrt(1/15) / (8/6).
+TEST(Budgets, ImageErrorTakesEachPixelOverItsBlocksLuminance) {
   RenderSettings s;
   s.width = s.height = 3;
   s.noise_target = 0.1;
@@ -150,7 +151,7 @@ TEST(Budgets, ImageErrorTakesEachPixelOverItsNeighboursLuminance) {
       for (int k = 0; k < 16; ++k) film.add_sample(x, y, Rgb(k % 2 ? (x == 1 && y == 1 ? 6.0f : 2.0f) : 0.0f), 1);
   schedule.update_floor(film);
   for (double e : schedule.estimated_errors(film)) EXPECT_NEAR(e, std::sqrt(1.0 / 15), 1e-6);
-  const double expected = std::sqrt((9 + 4 * (0.6 * 0.6) + 4 * (25.0 / 49)) / 15 / 9);
+  const double expected = std::sqrt((9 * (81.0 / 121) + 4 / (1.5 * 1.5) + 4 * (0.75 * 0.75)) / 15 / 9);
   EXPECT_NEAR(schedule.image_error(film), expected, 1e-6);
 }
 

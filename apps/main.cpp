@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
                   "until it is spent; the image is complete after the first pass");
   cmd->add_option("--noise", render.settings.noise_target,
                   "Noise target: adaptive sampling stops each pixel when the relative standard error of its "
-                  "luminance is below this (e.g. 0.01)")
+                  "luminance is below this (e.g. 0.01); with --allocation error, passes go on until the whole "
+                  "image's RMS of it is below this")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--min-spp", render.settings.min_spp,
                   "Samples every pixel gets before --noise judges it (default 16)")
@@ -64,8 +65,8 @@ int main(int argc, char** argv) {
                   "How samples are shared among pixels: uniform (default; each pixel the same) or error (after "
                   "--min-spp each, in proportion to each pixel's estimated share of the image's relative MSE; "
                   "--spp is then the mean; with --time the passes are shared the same way; with --noise passes go on "
-                  "until the whole image's estimated error is under the target, no pixel stopped by its own samples, "
-                  "so none is darkened, and --spp is each pixel's ceiling)");
+                  "until the whole image's estimated error is under the target, no pixel stopped by its own samples "
+                  "(so rare light is not darkened), and --spp is each pixel's ceiling)");
   cmd->add_option("--light-sampler", render.settings.light_sampler,
                   "How next-event estimation picks a light: tree (default; by each light's importance at the shading "
                   "point, from a light tree) or power (in proportion to emitted power, the same everywhere)");

@@ -3,9 +3,11 @@
 // deterministic and unbiased.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <numeric>
 
 #include "core/camera.h"
@@ -250,6 +252,37 @@ TEST(ErrorAllocation, NoiseTargetOverTheWholeImageKeepsRareLightUnbiased) {
   const double tolerance = 3 * (std::sqrt(2 / pixels) + std::sqrt(2.0 / 15 / pixels)) / 2;
   EXPECT_LT(rms, 0.2 * (1 + tolerance));
   EXPECT_GT(rms, 0.2 * 0.3);
+}
+
+// A noise target shared by error beside a time budget stops at whichever comes first. The clock is
+// the samples taken, a millisecond each: with time to spare the render is the one without a budget,
+// sample for sample; with half the samples' time it stops when the time is spent, the first pass
+// (every pixel's min_spp) complete.
+TEST(ErrorAllocation, NoiseTargetAndTimeBudgetStopAtWhicheverComesFirst) {
+  constexpr int kSize = 32;
+  constexpr double kHit = 1.0 / 32, kSecondsPerSample = 1e-3;
+  auto render = [&](double time_budget) {
+    RenderSettings s;
+    s.width = s.height = kSize;
+    s.spp = 1 << 16;
+    s.min_spp = 16;
+    s.noise_target = 0.2;
+    s.allocation = "error";
+    s.time_budget = time_budget;
+    SampleSchedule schedule(s, kSize, kSize);
+    Film film(kSize, kSize);
+    const uint64_t samples = test::render_bernoulli_pixels(schedule, film, kHit, kSecondsPerSample);
+    return std::make_pair(samples, film.resolve_counts());
+  };
+  const auto [noise_only, counts] = render(0);
+  const double noise_seconds = double(noise_only) * kSecondsPerSample;
+  const auto [spare, spare_counts] = render(10 * noise_seconds);
+  EXPECT_EQ(spare, noise_only);
+  EXPECT_EQ(spare_counts, counts);
+  const auto [half, half_counts] = render(0.5 * noise_seconds);
+  EXPECT_LE(double(half) * kSecondsPerSample, 0.5 * noise_seconds * (1 + 1e-9));
+  EXPECT_GT(double(half) * kSecondsPerSample, 0.4 * noise_seconds) << "stopped well before its time was spent";
+  EXPECT_GE(*std::min_element(half_counts.begin(), half_counts.end()), 16.0f);
 }
 
 TEST(ErrorAllocation, UnknownAllocationIsRefused) {

@@ -63,10 +63,11 @@ int main(int argc, char** argv) {
                   "Sampler: sobol (default; Owen-scrambled Sobol, lower error) or independent (uniform random)");
   cmd->add_option("--allocation", render.settings.allocation,
                   "How samples are shared among pixels: uniform (default; each pixel the same) or error (after "
-                  "--min-spp each, in proportion to each pixel's estimated share of the image's relative MSE; "
-                  "--spp is then the mean; with --time the passes are shared the same way; with --noise passes go on "
-                  "until the whole image's estimated error is under the target, no pixel stopped by its own samples "
-                  "(so rare light is not darkened), and --spp is each pixel's ceiling)");
+                  "--min-spp each, in proportion to each pixel's estimated share of the image's relative MSE, as "
+                  "judged from its neighbours; --spp is then the mean; with --time the passes are shared the same "
+                  "way; with --noise, by the share of the relative error it bounds, until the whole image's estimated "
+                  "error is under the target, no pixel stopped by its own samples (so rare light is barely "
+                  "darkened), and --spp is each pixel's ceiling)");
   cmd->add_option("--light-sampler", render.settings.light_sampler,
                   "How next-event estimation picks a light: tree (default; by each light's importance at the shading "
                   "point, from a light tree) or power (in proportion to emitted power, the same everywhere)");

@@ -128,18 +128,20 @@ std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
 double SampleSchedule::image_error(const Film& film) const {
   const std::vector<double> own = estimated_errors(film);
   const int width = film.width(), height = film.height();
+  std::vector<double> luminances(pixels_);
+  for (size_t i = 0; i < pixels_; ++i)
+    luminances[i] = luminance(mean_colour(film, int(i % size_t(width)), int(i / size_t(width))));
   double sum = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const double own_luminance = luminance(mean_colour(film, x, y));
-      double block = own_luminance;
+      const size_t i = size_t(y) * size_t(width) + size_t(x);
+      double block = luminances[i];
       int counted = 1;
       for_each_neighbour(x, y, width, height, [&](int nx, int ny) {
-        block += luminance(mean_colour(film, nx, ny));
+        block += luminances[size_t(ny) * size_t(width) + size_t(nx)];
         ++counted;
       });
-      const double e = own[size_t(y) * size_t(width) + size_t(x)] * std::max(own_luminance, floor_) /
-                       std::max(block / counted, floor_);
+      const double e = own[i] * std::max(luminances[i], floor_) / std::max(block / counted, floor_);
       sum += e * e;
     }
   return std::sqrt(sum / double(pixels_));

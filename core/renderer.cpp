@@ -133,10 +133,11 @@ RenderStats render(const Scene& scene, const Camera& world_camera, const Integra
     stats.spp_min = counts.min;
     stats.spp_max = counts.max;
     uint64_t converged = 0;
-    for (double e : schedule.estimated_errors(film)) converged += settings.noise_target > 0 && e <= settings.noise_target;
+    const std::vector<double> errors = schedule.estimated_errors(film);
+    for (double e : errors) converged += settings.noise_target > 0 && e <= settings.noise_target;
     const double pixels = double(width) * height;
     stats.spp_mean = double(counts.total) / pixels;  // a resumed film's samples count too
-    stats.relative_error = schedule.image_error(film);
+    stats.relative_error = schedule.image_error(film, errors);
     stats.converged_fraction = double(converged) / pixels;
   };
 

@@ -125,8 +125,7 @@ std::vector<double> SampleSchedule::judged_errors(const Film& film) const {
 // luminance, itself included. Estimate / real at fixed spp (own, neighbours', block): glass 0.51,
 // 1.03, 0.77; many-lights 0.97, 2.24, 1.22; the Cornell box 1.01, 1.01, 0.99; the window room
 // 1.12, 1.11, 1.11 (docs/PERFORMANCE.md, session 54).
-double SampleSchedule::image_error(const Film& film) const {
-  const std::vector<double> own = estimated_errors(film);
+double SampleSchedule::image_error(const Film& film, const std::vector<double>& estimated) const {
   const int width = film.width(), height = film.height();
   std::vector<double> luminances(pixels_);
   for (size_t i = 0; i < pixels_; ++i)
@@ -141,7 +140,7 @@ double SampleSchedule::image_error(const Film& film) const {
         block += luminances[size_t(ny) * size_t(width) + size_t(nx)];
         ++counted;
       });
-      const double e = own[i] * std::max(luminances[i], floor_) / std::max(block / counted, floor_);
+      const double e = estimated[i] * std::max(luminances[i], floor_) / std::max(block / counted, floor_);
       sum += e * e;
     }
   return std::sqrt(sum / double(pixels_));
@@ -225,7 +224,7 @@ bool SampleSchedule::next_pass(const Film& film, double seconds, uint64_t sample
       // against 0.01-0.05% at fixed spp; docs/PERFORMANCE.md, session 54). With the shares'
       // proportions kept, the image's mean squared error falls as 1 / total: aim 10% past the
       // estimate, since it is itself noisy.
-      const double error = image_error(film);
+      const double error = image_error(film, estimated_errors(film));
       if (error <= noise_target_) return false;
       const double needed = std::ceil(double(have) * (error / noise_target_) * (error / noise_target_) * 1.1);
       total = uint64_t(std::min(needed, double(total)));

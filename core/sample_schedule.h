@@ -44,9 +44,10 @@ class SampleSchedule {
   // sampler's stratification (core/stratified_error.h) when the film tracks halves.
   std::vector<double> estimated_errors(const Film& film) const;
   // The image's estimated error (the EXR header's prism/relativeError, and what a noise target
-  // shared by error bounds): the RMS over pixels of estimated_errors, each over its 3x3 block's mean
-  // luminance rather than its own (see sample_schedule.cpp). Needs update_floor first.
-  double image_error(const Film& film) const;
+  // shared by error bounds): the RMS over pixels of `estimated` (estimated_errors(film), which the
+  // caller may need too), each over its 3x3 block's mean luminance rather than its own (see
+  // sample_schedule.cpp). Needs update_floor first.
+  double image_error(const Film& film, const std::vector<double>& estimated) const;
   // Each pixel's error as the noise target judges it: the larger of its own estimated error and
   // the mean of its neighbours' that are not 0, each taken at this pixel's sample count (see
   // sample_schedule.cpp).

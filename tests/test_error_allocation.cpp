@@ -183,6 +183,24 @@ TEST(ErrorAllocation, FurnaceMeanIsUnbiased) {
   }
 }
 
+// How far over a whole-image noise target the real RMS relative error of `pixels` pixels may land,
+// relative to it, three standard deviations of each of two fluctuations (see the test below).
+double whole_image_tolerance(double pixels, int min_spp) {
+  return 3 * (std::sqrt(2 / pixels) + std::sqrt(2.0 / (min_spp - 1) / pixels)) / 2;
+}
+
+// A size x size film of rare hits (test::render_bernoulli_pixels) under a whole-image noise target
+// of 0.2, from 16 samples each.
+RenderSettings rare_light_noise_settings(int size) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.spp = 1 << 16;
+  s.min_spp = 16;
+  s.noise_target = 0.2;
+  s.allocation = "error";
+  return s;
+}
+
 // A noise target shared by error judges the whole image: passes go on until the RMS over pixels of
 // the estimated relative errors is under the target. The furnace's radiance is known, so the real
 // RMS error is checked against the target, with room for the two fluctuations that matter at this
@@ -202,7 +220,7 @@ TEST(ErrorAllocation, NoiseTargetIsMetOverTheWholeImageOnTheFurnace) {
       const FurnaceRender r = render_furnace(s);
       const double pixels = s.width * s.height;
       const double rms = test::noise_target_render_error(r, truth, sampler, target);
-      const double tolerance = 3 * (std::sqrt(2 / pixels) + std::sqrt(2.0 / (s.min_spp - 1) / pixels)) / 2;
+      const double tolerance = whole_image_tolerance(pixels, s.min_spp);
       EXPECT_LE(r.stats.relative_error, target) << sampler << ": the render stopped before its estimate met the target";
       EXPECT_LT(rms, target * (1 + tolerance)) << sampler;
       EXPECT_GT(rms, target * 0.3) << sampler << ": far below the target, samples were wasted";
@@ -222,12 +240,9 @@ TEST(ErrorAllocation, NoiseTargetOverTheWholeImageKeepsRareLightUnbiased) {
   constexpr int kSize = 64;
   constexpr double kHit = 1.0 / 32;
   const double pixels = kSize * kSize;
+  const RenderSettings settings = rare_light_noise_settings(kSize);
   auto render = [&](const std::string& allocation) {
-    RenderSettings s;
-    s.width = s.height = kSize;
-    s.spp = 1 << 16;
-    s.min_spp = 16;
-    s.noise_target = 0.2;
+    RenderSettings s = settings;
     s.allocation = allocation;
     SampleSchedule schedule(s, kSize, kSize);
     Film film(kSize, kSize);
@@ -249,9 +264,8 @@ TEST(ErrorAllocation, NoiseTargetOverTheWholeImageKeepsRareLightUnbiased) {
   render(kUniformAllocation);  // for comparison: the per-pixel target's darkening
   const auto [mean, standard_error, rms] = render("error");
   EXPECT_LT(std::abs(mean - kHit), 4 * standard_error) << "image mean " << mean;
-  const double tolerance = 3 * (std::sqrt(2 / pixels) + std::sqrt(2.0 / 15 / pixels)) / 2;
-  EXPECT_LT(rms, 0.2 * (1 + tolerance));
-  EXPECT_GT(rms, 0.2 * 0.3);
+  EXPECT_LT(rms, settings.noise_target * (1 + whole_image_tolerance(pixels, settings.min_spp)));
+  EXPECT_GT(rms, settings.noise_target * 0.3);
 }
 
 // A noise target shared by error beside a time budget stops at whichever comes first. The clock is
@@ -261,13 +275,9 @@ TEST(ErrorAllocation, NoiseTargetOverTheWholeImageKeepsRareLightUnbiased) {
 TEST(ErrorAllocation, NoiseTargetAndTimeBudgetStopAtWhicheverComesFirst) {
   constexpr int kSize = 32;
   constexpr double kHit = 1.0 / 32, kSecondsPerSample = 1e-3;
+  const RenderSettings settings = rare_light_noise_settings(kSize);
   auto render = [&](double time_budget) {
-    RenderSettings s;
-    s.width = s.height = kSize;
-    s.spp = 1 << 16;
-    s.min_spp = 16;
-    s.noise_target = 0.2;
-    s.allocation = "error";
+    RenderSettings s = settings;
     s.time_budget = time_budget;
     SampleSchedule schedule(s, kSize, kSize);
     Film film(kSize, kSize);
@@ -282,7 +292,7 @@ TEST(ErrorAllocation, NoiseTargetAndTimeBudgetStopAtWhicheverComesFirst) {
   const auto [half, half_counts] = render(0.5 * noise_seconds);
   EXPECT_LE(double(half) * kSecondsPerSample, 0.5 * noise_seconds * (1 + 1e-9));
   EXPECT_GT(double(half) * kSecondsPerSample, 0.4 * noise_seconds) << "stopped well before its time was spent";
-  EXPECT_GE(*std::min_element(half_counts.begin(), half_counts.end()), 16.0f);
+  EXPECT_GE(*std::min_element(half_counts.begin(), half_counts.end()), float(settings.min_spp));
 }
 
 TEST(ErrorAllocation, UnknownAllocationIsRefused) {
